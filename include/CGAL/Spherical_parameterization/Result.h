@@ -1,0 +1,57 @@
+// What spherical_parameterize() reports.
+
+#ifndef CGAL_SPHERICAL_PARAMETERIZATION_RESULT_H
+#define CGAL_SPHERICAL_PARAMETERIZATION_RESULT_H
+
+#include <CGAL/Spherical_parameterization/Error_code.h>
+
+#include <cstddef>
+#include <string>
+
+namespace CGAL {
+namespace Spherical_parameterization {
+
+/// \ingroup PkgSphericalParameterizationRef
+/// Figures of one stage of the method.
+struct Stage_statistics {
+  std::size_t iterations = 0;  ///< Sweeps over the vertices (stage 1: linear solves).
+  double seconds = 0.;         ///< Wall-clock time of the stage.
+  double residual = -1.;       ///< The paper's `Res` at the end of the stage (-1 when not computed).
+};
+
+/// \ingroup PkgSphericalParameterizationRef
+/// The outcome of `spherical_parameterize()`.
+struct Result {
+  Error_code status = Error_code::OK;
+  std::string message;                  ///< Human-readable explanation, with figures for input errors.
+
+  /// The paper's residual `Res = (1/n) sqrt(sum_i |alpha_i x_i - sum_j w_ij x_j|^2)` with the weights of each
+  /// vertex normalized to sum to one and `alpha_i = x_i . sum_j w_ij x_j` (its least-squares value).
+  double residual = -1.;
+  double max_tangential_residual = -1.; ///< `max_i |alpha_i x_i - sum_j w_ij x_j|` (same normalization).
+
+  std::size_t flipped_faces = 0;        ///< Spherical triangles with `orientation(ORIGIN,p,q,r) != POSITIVE` (exact).
+  double total_signed_area = 0.;        ///< Sum of the signed spherical areas (4 pi when bijective).
+  bool bijective = false;               ///< No flipped face and total area 4 pi.
+
+  Stage_statistics initial_guess;       ///< Stage 1: separator, two disks, Moebius, stereographic projection.
+  Stage_statistics gauss_seidel;        ///< Stage 2: projected Gauss-Seidel while `Res` decreases.
+  Stage_statistics newton;              ///< Stage 3: local Newton until `Res < tolerance`.
+  double total_seconds = 0.;
+
+  std::size_t number_of_vertices = 0;
+  std::size_t number_of_faces = 0;
+  std::size_t separator_size = 0;       ///< Vertices in METIS' separator.
+  std::size_t cut_loop_length = 0;      ///< Vertices on the loop shared by the two disks.
+  std::size_t initial_flipped_faces = 0;///< Non-positive spherical triangles of the initial guess.
+  bool uniform_initial_guess_fallback = false; ///< The disks were embedded with uniform weights instead.
+  std::size_t rejected_moves = 0;       ///< Vertex moves backtracked to preserve bijectivity.
+
+  /// `true` when `status == Error_code::OK`.
+  explicit operator bool() const { return status == Error_code::OK; }
+};
+
+} // namespace Spherical_parameterization
+} // namespace CGAL
+
+#endif // CGAL_SPHERICAL_PARAMETERIZATION_RESULT_H

@@ -1,0 +1,235 @@
+// Is a mesh a valid input (closed, connected, manifold, oriented, genus-0 triangle mesh)?
+
+#ifndef CGAL_SPHERICAL_PARAMETERIZATION_CHECK_INPUT_H
+#define CGAL_SPHERICAL_PARAMETERIZATION_CHECK_INPUT_H
+
+#include <CGAL/Spherical_parameterization/Error_code.h>
+#include <CGAL/Spherical_parameterization/internal/Mesh_arrays.h>
+
+#include <CGAL/Named_function_parameters.h>
+#include <CGAL/boost/graph/named_params_helper.h>
+
+#include <algorithm>
+#include <cstdint>
+#include <numeric>
+#include <sstream>
+#include <string>
+#include <utility>
+#include <vector>
+
+namespace CGAL {
+namespace Spherical_parameterization {
+
+/// \ingroup PkgSphericalParameterizationRef
+/// The verdict of `check_input()`: an error code and a message with the figures (how many loops, the genus...).
+struct Input_check {
+  Error_code status = Error_code::OK;
+  std::string message;
+  explicit operator bool() const { return status == Error_code::OK; }
+};
+
+namespace internal {
+
+class Union_find {
+public:
+  explicit Union_find(std::size_t n) : parent_(n) { std::iota(parent_.begin(), parent_.end(), std::size_t(0)); }
+  std::size_t find(std::size_t i)
+  {
+    while(parent_[i] != i) { parent_[i] = parent_[parent_[i]]; i = parent_[i]; }
+    return i;
+  }
+  bool unite(std::size_t a, std::size_t b)
+  {
+    a = find(a); b = find(b);
+    if(a == b) return false;
+    parent_[std::max(a, b)] = std::min(a, b);
+    return true;
+  }
+private:
+  std::vector<std::size_t> parent_;
+};
+
+inline Input_check make_check(Error_code code, const std::string& details = std::string())
+{
+  Input_check check;
+  check.status = code;
+  check.message = get_error_message(code);
+  if(!details.empty()) check.message += ": " + details;
+  return check;
+}
+
+// All checks on the polygon list, in an order that names the first real defect:
+// a pinched vertex passes the edge checks, so it is looked for before the Euler characteristic.
+inline Input_check check_mesh_arrays(const Mesh_arrays& mesh)
+{
+  const std::size_t nv = mesh.points.size();
+  const std::size_t nf = mesh.polygons.size();
+  if(nf == 0) return make_check(Error_code::EMPTY_MESH);
+
+  for(std::size_t v = 0; v < nv; ++v)
+    if(!is_finite(mesh.points[v]))
+      return make_check(Error_code::NON_FINITE_COORDINATES, "vertex " + std::to_string(v));
+
+  std::size_t non_triangles = 0;
+  for(const auto& p : mesh.polygons) if(p.size() != 3) ++non_triangles;
+  if(non_triangles > 0)
+    return make_check(Error_code::NOT_TRIANGLE_MESH,
+                      std::to_string(non_triangles) + " of " + std::to_string(nf) + " faces have more or fewer than 3 vertices");
+
+  std::size_t repeated = 0;
+  for(const auto& p : mesh.polygons) {
+    for(int i : p)
+      if(i < 0 || static_cast<std::size_t>(i) >= nv)
+        return make_check(Error_code::DEGENERATE_FACE, "a face refers to vertex " + std::to_string(i) + ", which does not exist");
+    if(p[0] == p[1] || p[1] == p[2] || p[2] == p[0]) ++repeated;
+  }
+  if(repeated > 0)
+    return make_check(Error_code::DEGENERATE_FACE, std::to_string(repeated) + " faces repeat a vertex");
+
+  // Undirected edges with the direction in which each face uses them.
+  struct Edge_use { std::uint64_t key; int forward; int face; };
+  std::vector<Edge_use> uses;
+  uses.reserve(3 * nf);
+  for(std::size_t f = 0; f < nf; ++f) {
+    const auto& p = mesh.polygons[f];
+    for(int k = 0; k < 3; ++k) {
+      const std::uint64_t a = static_cast<std::uint64_t>(p[k]), b = static_cast<std::uint64_t>(p[(k + 1) % 3]);
+      uses.push_back({std::min(a, b) << 32 | std::max(a, b), a < b ? 1 : 0, static_cast<int>(f)});
+    }
+  }
+  std::sort(uses.begin(), uses.end(), [](const Edge_use& l, const Edge_use& r) {
+    return l.key < r.key || (l.key == r.key && l.face < r.face);
+  });
+
+  std::size_t number_of_edges = 0, border_edges = 0, non_manifold_edges = 0, misoriented_edges = 0;
+  Union_find border_loops(nv);
+  std::vector<char> on_border(nv, 0);
+  for(std::size_t i = 0; i < uses.size();) {
+    std::size_t j = i;
+    while(j < uses.size() && uses[j].key == uses[i].key) ++j;
+    ++number_of_edges;
+    const std::size_t count = j - i;
+    if(count == 1) {
+      ++border_edges;
+      const std::size_t a = static_cast<std::size_t>(uses[i].key >> 32), b = static_cast<std::size_t>(uses[i].key & 0xffffffffu);
+      border_loops.unite(a, b);
+      on_border[a] = on_border[b] = 1;
+    } else if(count > 2) {
+      ++non_manifold_edges;
+    } else if(uses[i].forward == uses[i + 1].forward) {
+      ++misoriented_edges;
+    }
+    i = j;
+  }
+
+  if(non_manifold_edges > 0)
+    return make_check(Error_code::NON_MANIFOLD_EDGE, std::to_string(non_manifold_edges) + " edges are shared by more than two faces");
+  if(border_edges > 0) {
+    std::size_t loops = 0;
+    for(std::size_t v = 0; v < nv; ++v) if(on_border[v] && border_loops.find(v) == v) ++loops;
+    return make_check(Error_code::HAS_BORDER, std::to_string(border_edges) + " boundary edges in " +
+                                              std::to_string(loops) + " boundary loop(s)");
+  }
+
+  // Faces around each vertex: the link (pairs of neighbours joined by a face) must be one cycle.
+  std::vector<std::size_t> offsets(nv + 1, 0);
+  for(const auto& p : mesh.polygons) for(int i : p) ++offsets[static_cast<std::size_t>(i) + 1];
+  std::size_t isolated = 0;
+  for(std::size_t v = 0; v < nv; ++v) if(offsets[v + 1] == 0) ++isolated;
+  if(isolated > 0)
+    return make_check(Error_code::ISOLATED_VERTEX, std::to_string(isolated) + " vertices belong to no face");
+  std::partial_sum(offsets.begin(), offsets.end(), offsets.begin());
+  std::vector<std::pair<int, int>> link(offsets[nv]);
+  {
+    std::vector<std::size_t> fill(offsets.begin(), offsets.end() - 1);
+    for(const auto& p : mesh.polygons)
+      for(int k = 0; k < 3; ++k)
+        link[fill[static_cast<std::size_t>(p[k])]++] = {p[(k + 1) % 3], p[(k + 2) % 3]};
+  }
+  std::size_t pinched = 0;
+  std::vector<int> local;
+  for(std::size_t v = 0; v < nv; ++v) {
+    local.clear();
+    for(std::size_t k = offsets[v]; k < offsets[v + 1]; ++k) { local.push_back(link[k].first); local.push_back(link[k].second); }
+    std::sort(local.begin(), local.end());
+    local.erase(std::unique(local.begin(), local.end()), local.end());
+    Union_find ring(local.size());
+    std::size_t components = local.size();
+    for(std::size_t k = offsets[v]; k < offsets[v + 1]; ++k) {
+      const std::size_t a = static_cast<std::size_t>(std::lower_bound(local.begin(), local.end(), link[k].first) - local.begin());
+      const std::size_t b = static_cast<std::size_t>(std::lower_bound(local.begin(), local.end(), link[k].second) - local.begin());
+      if(ring.unite(a, b)) --components;
+    }
+    if(components != 1) ++pinched;
+  }
+  if(pinched > 0)
+    return make_check(Error_code::NON_MANIFOLD_VERTEX, std::to_string(pinched) + " vertices have more than one fan of faces");
+
+  if(misoriented_edges > 0)
+    return make_check(Error_code::INCONSISTENT_ORIENTATION, std::to_string(misoriented_edges) +
+                                                            " edges are traversed in the same direction by their two faces");
+
+  Union_find components(nv);
+  std::size_t number_of_components = nv;
+  for(const auto& p : mesh.polygons)
+    for(int k = 0; k < 3; ++k)
+      if(components.unite(static_cast<std::size_t>(p[k]), static_cast<std::size_t>(p[(k + 1) % 3]))) --number_of_components;
+  if(number_of_components > 1)
+    return make_check(Error_code::MULTIPLE_COMPONENTS, std::to_string(number_of_components) + " connected components");
+
+  const long long euler = static_cast<long long>(nv) - static_cast<long long>(number_of_edges) + static_cast<long long>(nf);
+  if(euler != 2)
+    return make_check(Error_code::GENUS_NOT_ZERO, "genus " + std::to_string((2 - euler) / 2) +
+                                                  " (Euler characteristic " + std::to_string(euler) + ")");
+  return make_check(Error_code::OK);
+}
+
+} // namespace internal
+
+/// \ingroup PkgSphericalParameterizationRef
+/// Checks that `tm` can be mapped onto the sphere: it has faces, all triangles, no face repeats a vertex, all
+/// coordinates are finite, every vertex belongs to a face, it is closed, edge- and vertex-manifold, consistently
+/// oriented, connected and of genus 0. Returns the first defect found with its figures.
+///
+/// \cgalNamedParamsBegin
+///   \cgalParamNBegin{vertex_point_map}
+///     \cgalParamDescription{a property map associating points to the vertices of `tm`}
+///     \cgalParamDefault{`boost::get(CGAL::vertex_point, tm)`}
+///   \cgalParamNEnd
+///   \cgalParamNBegin{vertex_index_map}
+///     \cgalParamDescription{a property map associating to each vertex of `tm` a unique index between `0` and `num_vertices(tm) - 1`}
+///     \cgalParamDefault{an automatically indexed internal map}
+///   \cgalParamNEnd
+/// \cgalNamedParamsEnd
+template <typename TriangleMesh, typename NamedParameters = CGAL::parameters::Default_named_parameters>
+Input_check check_input(const TriangleMesh& tm, const NamedParameters& np = CGAL::parameters::default_values())
+{
+  using CGAL::parameters::choose_parameter;
+  using CGAL::parameters::get_parameter;
+  auto vpm = choose_parameter(get_parameter(np, CGAL::internal_np::vertex_point), get_const_property_map(CGAL::vertex_point, tm));
+  auto vim = CGAL::get_initialized_vertex_index_map(tm, np);
+  return internal::check_mesh_arrays(internal::read_face_graph(tm, vpm, vim));
+}
+
+/// \ingroup PkgSphericalParameterizationRef
+/// The same checks on a polygon soup (points and faces as index lists), e.g. as read by
+/// `CGAL::IO::read_polygon_soup()`: soups can hold what a halfedge data structure cannot (non-manifold edges).
+template <typename PointRange, typename PolygonRange>
+Input_check check_polygon_soup(const PointRange& points, const PolygonRange& polygons)
+{
+  internal::Mesh_arrays mesh;
+  mesh.points.reserve(points.size());
+  for(const auto& p : points)
+    mesh.points.emplace_back(CGAL::to_double(p.x()), CGAL::to_double(p.y()), CGAL::to_double(p.z()));
+  for(const auto& polygon : polygons) {
+    std::vector<int> face;
+    for(const auto i : polygon) face.push_back(static_cast<int>(i));
+    mesh.polygons.push_back(std::move(face));
+  }
+  return internal::check_mesh_arrays(mesh);
+}
+
+} // namespace Spherical_parameterization
+} // namespace CGAL
+
+#endif // CGAL_SPHERICAL_PARAMETERIZATION_CHECK_INPUT_H

@@ -1,0 +1,302 @@
+// Copyright (c) 2024
+// SPDX-License-Identifier: GPL-3.0-or-later
+//
+// Preconditioned Krylov methods over raw arrays: conjugate gradient (symmetric), BiCGStab and restarted GMRES
+// (non-symmetric), right-preconditioned so that the stopping test is on the true residual b - A x.
+// Work vectors live in Krylov_workspace and are reused between solves.
+
+#ifndef CGAL_SPHERICAL_PARAMETERIZATION_INTERNAL_AMG_KRYLOV_SOLVERS_H
+#define CGAL_SPHERICAL_PARAMETERIZATION_INTERNAL_AMG_KRYLOV_SOLVERS_H
+
+#include <CGAL/Spherical_parameterization/internal/AMG/Compressed_row_matrix.h>
+
+#include <algorithm>
+#include <cmath>
+#include <vector>
+
+namespace CGAL {
+namespace Spherical_parameterization {
+namespace internal {
+namespace AMG {
+
+struct Krylov_result
+{
+  bool converged = false;
+  int iterations = 0;
+  double relative_residual = 0.;
+};
+
+struct Krylov_workspace
+{
+  std::vector<std::vector<double>> vectors;
+
+  double* vector(std::size_t k, std::size_t n)
+  {
+    if(vectors.size() <= k)
+      vectors.resize(k + 1);
+    if(vectors[k].size() != n)
+      vectors[k].assign(n, 0.);
+    return vectors[k].data();
+  }
+};
+
+inline double dot(const double* x, const double* y, Index n)
+{
+  double sum = 0.;
+  for(Index i = 0; i < n; ++i)
+    sum += x[i] * y[i];
+  return sum;
+}
+
+inline double norm(const double* x, Index n) { return std::sqrt(dot(x, x, n)); }
+
+// target_residual_norm: absolute bound on ||b - A x||; x holds the initial guess.
+template <class Preconditioner>
+Krylov_result conjugate_gradient(const Compressed_row_matrix& A, const double* b, double* x,
+                                 Preconditioner& apply_preconditioner, double target_residual_norm,
+                                 double reference_norm, int max_iterations, Krylov_workspace& workspace)
+{
+  const Index n = A.number_of_rows;
+  double* r = workspace.vector(0, n);
+  double* z = workspace.vector(1, n);
+  double* p = workspace.vector(2, n);
+  double* q = workspace.vector(3, n);
+  Krylov_result result;
+
+  bool restart = true;
+  double rz = 0.;
+  while(true)
+  {
+    if(restart)
+    {
+      // (Re)start from the true residual: the recursive one drifts near 1e-10 relative accuracy.
+      residual(A, x, b, r);
+      const double residual_norm = norm(r, n);
+      result.relative_residual = residual_norm / reference_norm;
+      if(!std::isfinite(residual_norm))
+        return result;
+      if(residual_norm <= target_residual_norm)
+      {
+        result.converged = true;
+        return result;
+      }
+      if(result.iterations >= max_iterations)
+        return result;
+      apply_preconditioner(r, z);
+      std::copy(z, z + n, p);
+      rz = dot(r, z, n);
+      restart = false;
+    }
+    multiply(A, p, q);
+    const double pq = dot(p, q, n);
+    if(!(pq > 0.) || !(rz > 0.))
+      return result; // not positive definite (or the preconditioner is not): breakdown
+    const double alpha = rz / pq;
+    double residual_norm_squared = 0.;
+    for(Index i = 0; i < n; ++i)
+    {
+      x[i] += alpha * p[i];
+      r[i] -= alpha * q[i];
+      residual_norm_squared += r[i] * r[i];
+    }
+    ++result.iterations;
+    const double residual_norm = std::sqrt(residual_norm_squared);
+    if(!std::isfinite(residual_norm))
+      return result;
+    if(residual_norm <= target_residual_norm || result.iterations >= max_iterations)
+    {
+      restart = true;
+      continue;
+    }
+    apply_preconditioner(r, z);
+    const double rz_new = dot(r, z, n);
+    const double beta = rz_new / rz;
+    rz = rz_new;
+    for(Index i = 0; i < n; ++i)
+      p[i] = z[i] + beta * p[i];
+  }
+}
+
+template <class Preconditioner>
+Krylov_result bicgstab(const Compressed_row_matrix& A, const double* b, double* x,
+                       Preconditioner& apply_preconditioner, double target_residual_norm,
+                       double reference_norm, int max_iterations, Krylov_workspace& workspace)
+{
+  const Index n = A.number_of_rows;
+  double* r = workspace.vector(0, n);
+  double* r0 = workspace.vector(1, n);
+  double* p = workspace.vector(2, n);
+  double* v = workspace.vector(3, n);
+  double* p_hat = workspace.vector(4, n);
+  double* s_hat = workspace.vector(5, n);
+  double* t = workspace.vector(6, n);
+  Krylov_result result;
+
+  while(true)
+  {
+    residual(A, x, b, r);
+    double residual_norm = norm(r, n);
+    result.relative_residual = residual_norm / reference_norm;
+    if(!std::isfinite(residual_norm))
+      return result;
+    if(residual_norm <= target_residual_norm)
+    {
+      result.converged = true;
+      return result;
+    }
+    if(result.iterations >= max_iterations)
+      return result;
+
+    std::copy(r, r + n, r0);
+    std::fill(p, p + n, 0.);
+    std::fill(v, v + n, 0.);
+    double rho = 1., alpha = 1., omega = 1.;
+    const double r0_norm_squared = dot(r0, r0, n);
+    while(result.iterations < max_iterations)
+    {
+      const double rho_new = dot(r0, r, n);
+      // Breakdown (r orthogonal to the shadow residual): restart from the true residual.
+      if(std::abs(rho_new) <= 1e-30 * r0_norm_squared)
+        break;
+      const double beta = (rho_new / rho) * (alpha / omega);
+      rho = rho_new;
+      for(Index i = 0; i < n; ++i)
+        p[i] = r[i] + beta * (p[i] - omega * v[i]);
+      apply_preconditioner(p, p_hat);
+      multiply(A, p_hat, v);
+      const double r0v = dot(r0, v, n);
+      if(r0v == 0. || !std::isfinite(r0v))
+        return result;
+      alpha = rho / r0v;
+      for(Index i = 0; i < n; ++i)
+      {
+        x[i] += alpha * p_hat[i];
+        r[i] -= alpha * v[i]; // r now holds s
+      }
+      ++result.iterations;
+      residual_norm = norm(r, n);
+      if(!std::isfinite(residual_norm))
+        return result;
+      if(residual_norm <= target_residual_norm)
+        break;
+      apply_preconditioner(r, s_hat);
+      multiply(A, s_hat, t);
+      const double tt = dot(t, t, n);
+      omega = tt > 0. ? dot(t, r, n) / tt : 0.;
+      if(omega == 0. || !std::isfinite(omega))
+        break;
+      for(Index i = 0; i < n; ++i)
+      {
+        x[i] += omega * s_hat[i];
+        r[i] -= omega * t[i];
+      }
+      residual_norm = norm(r, n);
+      if(residual_norm <= target_residual_norm)
+        break;
+    }
+  }
+}
+
+// Restarted GMRES(m) with right preconditioning and Givens rotations; one preconditioner application per
+// iteration plus one per restart (x += M^{-1} V y).
+template <class Preconditioner>
+Krylov_result gmres(const Compressed_row_matrix& A, const double* b, double* x,
+                    Preconditioner& apply_preconditioner, double target_residual_norm,
+                    double reference_norm, int max_iterations, int restart_length,
+                    Krylov_workspace& workspace)
+{
+  const Index n = A.number_of_rows;
+  const int m = std::max(restart_length, 1);
+  double* r = workspace.vector(0, n);
+  double* z = workspace.vector(1, n);
+  std::vector<double> hessenberg(std::size_t(m + 1) * m, 0.); // column-major, (m+1) x m
+  std::vector<double> cosines(m), sines(m), g(m + 1), y(m);
+  Krylov_result result;
+
+  while(true)
+  {
+    residual(A, x, b, r);
+    const double residual_norm = norm(r, n);
+    result.relative_residual = residual_norm / reference_norm;
+    if(!std::isfinite(residual_norm))
+      return result;
+    if(residual_norm <= target_residual_norm)
+    {
+      result.converged = true;
+      return result;
+    }
+    if(result.iterations >= max_iterations)
+      return result;
+
+    double* v0 = workspace.vector(2, n);
+    for(Index i = 0; i < n; ++i)
+      v0[i] = r[i] / residual_norm;
+    std::fill(g.begin(), g.end(), 0.);
+    g[0] = residual_norm;
+    int k = 0;
+    while(k < m && result.iterations < max_iterations)
+    {
+      double* h = &hessenberg[std::size_t(k) * (m + 1)];
+      apply_preconditioner(workspace.vectors[2 + k].data(), z);
+      double* w = workspace.vector(2 + k + 1, n);
+      multiply(A, z, w);
+      for(int i = 0; i <= k; ++i) // modified Gram-Schmidt
+      {
+        const double* vi = workspace.vectors[2 + i].data();
+        h[i] = dot(w, vi, n);
+        for(Index j = 0; j < n; ++j)
+          w[j] -= h[i] * vi[j];
+      }
+      h[k + 1] = norm(w, n);
+      if(!std::isfinite(h[k + 1]))
+        return result;
+      if(h[k + 1] > 0.)
+        for(Index j = 0; j < n; ++j)
+          w[j] /= h[k + 1];
+      for(int i = 0; i < k; ++i)
+      {
+        const double temporary = cosines[i] * h[i] + sines[i] * h[i + 1];
+        h[i + 1] = -sines[i] * h[i] + cosines[i] * h[i + 1];
+        h[i] = temporary;
+      }
+      const double radius = std::hypot(h[k], h[k + 1]);
+      if(radius == 0.)
+        return result;
+      cosines[k] = h[k] / radius;
+      sines[k] = h[k + 1] / radius;
+      h[k] = radius;
+      h[k + 1] = 0.;
+      g[k + 1] = -sines[k] * g[k];
+      g[k] = cosines[k] * g[k];
+      ++k;
+      ++result.iterations;
+      if(std::abs(g[k]) <= target_residual_norm)
+        break;
+    }
+    // y = H^{-1} g, then x += M^{-1} (V y)
+    for(int i = k - 1; i >= 0; --i)
+    {
+      double sum = g[i];
+      for(int j = i + 1; j < k; ++j)
+        sum -= hessenberg[std::size_t(j) * (m + 1) + i] * y[j];
+      y[i] = sum / hessenberg[std::size_t(i) * (m + 1) + i];
+    }
+    std::fill(r, r + n, 0.);
+    for(int j = 0; j < k; ++j)
+    {
+      const double* vj = workspace.vectors[2 + j].data();
+      for(Index i = 0; i < n; ++i)
+        r[i] += y[j] * vj[i];
+    }
+    apply_preconditioner(r, z);
+    for(Index i = 0; i < n; ++i)
+      x[i] += z[i];
+  }
+}
+
+} // namespace AMG
+} // namespace internal
+} // namespace Spherical_parameterization
+} // namespace CGAL
+
+#endif // CGAL_SPHERICAL_PARAMETERIZATION_INTERNAL_AMG_KRYLOV_SOLVERS_H

@@ -1,0 +1,554 @@
+// Copyright (c) 2024
+// SPDX-License-Identifier: GPL-3.0-or-later
+//
+// Classical (Ruge-Stueben) algebraic multigrid: strength of connection, C/F splitting,
+// classical interpolation, Galerkin coarse operators, and the V-cycle with Gauss-Seidel smoothing.
+// References: J. W. Ruge, K. Stueben, "Algebraic multigrid", in Multigrid Methods, SIAM 1987;
+// K. Stueben, "An introduction to algebraic multigrid", Appendix A of Trottenberg et al., Multigrid, 2001.
+
+#ifndef CGAL_SPHERICAL_PARAMETERIZATION_INTERNAL_AMG_RUGE_STUEBEN_HIERARCHY_H
+#define CGAL_SPHERICAL_PARAMETERIZATION_INTERNAL_AMG_RUGE_STUEBEN_HIERARCHY_H
+
+#include <CGAL/Spherical_parameterization/internal/AMG/Compressed_row_matrix.h>
+
+#include <Eigen/Dense>
+#include <Eigen/Sparse>
+#include <Eigen/SparseLU>
+
+#include <algorithm>
+#include <cmath>
+#include <memory>
+#include <vector>
+
+namespace CGAL {
+namespace Spherical_parameterization {
+namespace internal {
+namespace AMG {
+
+struct Hierarchy_parameters
+{
+  double strength_threshold = 0.25;
+  int max_coarse_size = 200;
+  int max_levels = 25;
+  int pre_smoothing_sweeps = 1;
+  int post_smoothing_sweeps = 1;
+};
+
+// Sparsity pattern only (the strength graph has no values).
+struct Compressed_row_pattern
+{
+  Index number_of_rows = 0;
+  std::vector<Index> row_start;
+  std::vector<Index> column;
+
+  Index begin(Index i) const { return row_start[i]; }
+  Index end(Index i) const { return row_start[i + 1]; }
+};
+
+inline Compressed_row_pattern transpose(const Compressed_row_pattern& S)
+{
+  Compressed_row_pattern T;
+  T.number_of_rows = S.number_of_rows;
+  T.row_start.assign(std::size_t(S.number_of_rows) + 1, 0);
+  for(Index c : S.column)
+    ++T.row_start[c + 1];
+  for(Index i = 0; i < T.number_of_rows; ++i)
+    T.row_start[i + 1] += T.row_start[i];
+  T.column.resize(S.column.size());
+  std::vector<Index> next(T.row_start.begin(), T.row_start.end() - 1);
+  for(Index i = 0; i < S.number_of_rows; ++i)
+    for(Index k = S.begin(i); k < S.end(i); ++k)
+      T.column[next[S.column[k]]++] = i;
+  return T;
+}
+
+// Row i of S lists the points j that strongly influence i:
+// -a_ij >= threshold * max_k(-a_ik) in rows whose off-diagonals are all non-positive (M-matrix rows),
+// |a_ij| >= threshold * max_k |a_ik| in rows that also have positive off-diagonals.
+inline Compressed_row_pattern strength_of_connection(const Compressed_row_matrix& A, double threshold)
+{
+  Compressed_row_pattern S;
+  S.number_of_rows = A.number_of_rows;
+  S.row_start.assign(std::size_t(A.number_of_rows) + 1, 0);
+  S.column.reserve(A.number_of_nonzeros());
+  for(Index i = 0; i < A.number_of_rows; ++i)
+  {
+    bool has_positive_off_diagonal = false;
+    double largest_negative = 0., largest_absolute = 0.;
+    for(Index k = A.row_start[i]; k < A.row_start[i + 1]; ++k)
+    {
+      if(A.column[k] == i)
+        continue;
+      const double a = A.value[k];
+      has_positive_off_diagonal |= (a > 0.);
+      largest_negative = std::max(largest_negative, -a);
+      largest_absolute = std::max(largest_absolute, std::abs(a));
+    }
+    if(has_positive_off_diagonal)
+    {
+      const double bound = threshold * largest_absolute;
+      for(Index k = A.row_start[i]; k < A.row_start[i + 1]; ++k)
+        if(A.column[k] != i && std::abs(A.value[k]) >= bound && A.value[k] != 0.)
+          S.column.push_back(A.column[k]);
+    }
+    else if(largest_negative > 0.)
+    {
+      const double bound = threshold * largest_negative;
+      for(Index k = A.row_start[i]; k < A.row_start[i + 1]; ++k)
+        if(A.column[k] != i && -A.value[k] >= bound)
+          S.column.push_back(A.column[k]);
+    }
+    S.row_start[i + 1] = Index(S.column.size());
+  }
+  S.column.shrink_to_fit();
+  return S;
+}
+
+enum Point_type : signed char { UNDECIDED = 0, COARSE_POINT = 1, FINE_POINT = -1 };
+
+// Buckets of undecided points keyed by their measure, with O(1) move and O(1) amortized max extraction.
+class Measure_buckets
+{
+public:
+  Measure_buckets(Index number_of_points, Index largest_measure)
+    : m_head(std::size_t(largest_measure) + 1, -1), m_next(number_of_points, -1),
+      m_previous(number_of_points, -1), m_measure(number_of_points, 0), m_top(-1)
+  { }
+
+  void insert(Index i, Index measure)
+  {
+    m_measure[i] = measure;
+    m_previous[i] = -1;
+    m_next[i] = m_head[measure];
+    if(m_head[measure] >= 0)
+      m_previous[m_head[measure]] = i;
+    m_head[measure] = i;
+    m_top = std::max(m_top, measure);
+  }
+
+  void remove(Index i)
+  {
+    if(m_previous[i] >= 0)
+      m_next[m_previous[i]] = m_next[i];
+    else
+      m_head[m_measure[i]] = m_next[i];
+    if(m_next[i] >= 0)
+      m_previous[m_next[i]] = m_previous[i];
+  }
+
+  void change_measure(Index i, Index delta)
+  {
+    remove(i);
+    insert(i, m_measure[i] + delta);
+  }
+
+  // Point of largest measure, -1 when empty.
+  Index top()
+  {
+    while(m_top >= 0 && m_head[m_top] < 0)
+      --m_top;
+    return m_top >= 0 ? m_head[m_top] : -1;
+  }
+
+private:
+  std::vector<Index> m_head, m_next, m_previous, m_measure;
+  Index m_top;
+};
+
+// Classical C/F splitting. First pass: greedy maximal independent set by the measure
+// lambda_i = number of undecided points i strongly influences + 2 * number of such F points.
+// Second pass: every strong F-F connection must share a common C point (criterion 1, enforced strictly).
+inline std::vector<signed char> split_coarse_fine(const Compressed_row_pattern& S, const Compressed_row_pattern& ST)
+{
+  const Index n = S.number_of_rows;
+  std::vector<signed char> type(n, UNDECIDED);
+
+  Index largest_influence = 0;
+  for(Index i = 0; i < n; ++i)
+    largest_influence = std::max(largest_influence, ST.end(i) - ST.begin(i));
+
+  // A measure can at most double: each point it influences becomes F once.
+  Measure_buckets buckets(n, 2 * largest_influence + 1);
+  for(Index i = 0; i < n; ++i)
+  {
+    // Points neither influencing nor depending on anything are left to the smoother.
+    if(S.begin(i) == S.end(i) && ST.begin(i) == ST.end(i))
+      type[i] = FINE_POINT;
+    else
+      buckets.insert(i, ST.end(i) - ST.begin(i));
+  }
+
+  for(Index i = buckets.top(); i >= 0; i = buckets.top())
+  {
+    type[i] = COARSE_POINT;
+    buckets.remove(i);
+    for(Index k = ST.begin(i); k < ST.end(i); ++k)
+    {
+      const Index j = ST.column[k];
+      if(type[j] != UNDECIDED)
+        continue;
+      type[j] = FINE_POINT;
+      buckets.remove(j);
+      // The new F point j needs C points among those it depends on: make them more attractive.
+      for(Index l = S.begin(j); l < S.end(j); ++l)
+        if(type[S.column[l]] == UNDECIDED)
+          buckets.change_measure(S.column[l], +1);
+    }
+    // i no longer needs the points it depends on.
+    for(Index k = S.begin(i); k < S.end(i); ++k)
+      if(type[S.column[k]] == UNDECIDED)
+        buckets.change_measure(S.column[k], -1);
+  }
+
+  std::vector<Index> marker(n, -1);
+  for(Index i = 0; i < n; ++i)
+  {
+    if(type[i] != FINE_POINT)
+      continue;
+    for(Index k = S.begin(i); k < S.end(i); ++k)
+      if(type[S.column[k]] == COARSE_POINT)
+        marker[S.column[k]] = i;
+    Index tentative_coarse_point = -1;
+    for(Index k = S.begin(i); k < S.end(i); ++k)
+    {
+      const Index j = S.column[k];
+      if(type[j] != FINE_POINT)
+        continue;
+      bool shares_coarse_point = false;
+      for(Index l = S.begin(j); l < S.end(j) && !shares_coarse_point; ++l)
+        shares_coarse_point = (marker[S.column[l]] == i);
+      if(shares_coarse_point)
+        continue;
+      if(tentative_coarse_point >= 0)
+      {
+        // Two neighbours would need new C points: making i itself C is cheaper.
+        type[tentative_coarse_point] = FINE_POINT;
+        type[i] = COARSE_POINT;
+        break;
+      }
+      tentative_coarse_point = j;
+      type[j] = COARSE_POINT;
+      marker[j] = i;
+    }
+  }
+  return type;
+}
+
+// Classical interpolation (Ruge-Stueben, with the usual sign modification):
+//   w_ij = -(a_ij + sum_{k in F_i^s} a_ik a_kj / sum_{m in C_i^s} a_km) / (a_ii + sum_{weak k} a_ik)
+// where only the entries a_km of sign opposite to a_kk are distributed; an F neighbour without such an entry
+// towards C_i^s is lumped onto the diagonal.
+inline Compressed_row_matrix classical_interpolation(const Compressed_row_matrix& A,
+                                                     const Compressed_row_pattern& S,
+                                                     const std::vector<signed char>& type,
+                                                     const std::vector<Index>& coarse_index,
+                                                     Index number_of_coarse_points)
+{
+  const Index n = A.number_of_rows;
+  Compressed_row_matrix P;
+  P.number_of_rows = n;
+  P.number_of_columns = number_of_coarse_points;
+  P.row_start.assign(std::size_t(n) + 1, 0);
+  for(Index i = 0; i < n; ++i)
+  {
+    Index count = 0;
+    if(type[i] == COARSE_POINT)
+      count = 1;
+    else
+      for(Index k = S.begin(i); k < S.end(i); ++k)
+        count += (type[S.column[k]] == COARSE_POINT);
+    P.row_start[i + 1] = P.row_start[i] + count;
+  }
+  P.column.resize(P.row_start.back());
+  P.value.resize(P.row_start.back());
+
+  std::vector<Index> strong_row(n, -1);      // strong_row[j] == i  <=>  j in S_i
+  std::vector<Index> position_in_P(n, -1);   // where C point j sits in the current row of P, or < begin
+  std::vector<double> diagonal(n, 0.);
+  for(Index i = 0; i < n; ++i)
+    for(Index k = A.row_start[i]; k < A.row_start[i + 1]; ++k)
+      if(A.column[k] == i)
+        diagonal[i] += A.value[k];
+
+  for(Index i = 0; i < n; ++i)
+  {
+    const Index begin = P.row_start[i];
+    if(type[i] == COARSE_POINT)
+    {
+      P.column[begin] = coarse_index[i];
+      P.value[begin] = 1.;
+      continue;
+    }
+    if(begin == P.row_start[i + 1])
+      continue; // no strong C neighbour: the smoother alone takes care of this point
+
+    Index end = begin;
+    for(Index k = S.begin(i); k < S.end(i); ++k)
+    {
+      const Index j = S.column[k];
+      strong_row[j] = i;
+      if(type[j] == COARSE_POINT)
+      {
+        position_in_P[j] = end;
+        P.column[end] = coarse_index[j];
+        P.value[end] = 0.;
+        ++end;
+      }
+    }
+
+    double lumped_diagonal = 0.;
+    for(Index k = A.row_start[i]; k < A.row_start[i + 1]; ++k)
+    {
+      const Index j = A.column[k];
+      const double a_ij = A.value[k];
+      if(j == i || strong_row[j] != i)
+      {
+        lumped_diagonal += a_ij; // the diagonal itself and the weak connections
+        continue;
+      }
+      if(type[j] == COARSE_POINT)
+      {
+        P.value[position_in_P[j]] += a_ij;
+        continue;
+      }
+      // Strong F neighbour j: distribute a_ij over the common strong C points.
+      const double sign_of_diagonal = diagonal[j] >= 0. ? 1. : -1.;
+      double denominator = 0.;
+      for(Index l = A.row_start[j]; l < A.row_start[j + 1]; ++l)
+      {
+        const Index m = A.column[l];
+        const Index p = position_in_P[m];
+        // Positions set for earlier rows are all below begin.
+        if(p >= begin && type[m] == COARSE_POINT && A.value[l] * sign_of_diagonal < 0.)
+          denominator += A.value[l];
+      }
+      if(denominator == 0.)
+      {
+        lumped_diagonal += a_ij;
+        continue;
+      }
+      const double factor = a_ij / denominator;
+      for(Index l = A.row_start[j]; l < A.row_start[j + 1]; ++l)
+      {
+        const Index m = A.column[l];
+        const Index p = position_in_P[m];
+        // Positions set for earlier rows are all below begin.
+        if(p >= begin && type[m] == COARSE_POINT && A.value[l] * sign_of_diagonal < 0.)
+          P.value[p] += factor * A.value[l];
+      }
+    }
+    // A lumped diagonal of the wrong sign or near zero would blow up the weights: keep a_ii then.
+    if(!(lumped_diagonal * diagonal[i] > 1e-3 * diagonal[i] * diagonal[i]))
+      lumped_diagonal = diagonal[i];
+    const double inverse = -1. / lumped_diagonal;
+    for(Index p = begin; p < end; ++p)
+      P.value[p] *= inverse;
+  }
+  return P;
+}
+
+// The multigrid hierarchy with its work vectors (allocated once, reused by every V-cycle).
+class Ruge_stueben_hierarchy
+{
+public:
+  struct Level
+  {
+    Compressed_row_matrix A;
+    Compressed_row_matrix P; // interpolation from the next coarser level
+    Compressed_row_matrix R; // restriction = P^T
+    std::vector<double> inverse_diagonal;
+    std::vector<double> solution, right_hand_side, residual;
+  };
+
+  // Returns false when a diagonal entry is not positive or when the coarsest operator is singular.
+  bool build(Compressed_row_matrix&& fine_matrix, const Hierarchy_parameters& parameters)
+  {
+    m_parameters = parameters;
+    m_levels.clear();
+    m_levels.emplace_back();
+    m_levels.back().A = std::move(fine_matrix);
+
+    while(m_levels.back().A.number_of_rows > std::max(parameters.max_coarse_size, 1)
+          && int(m_levels.size()) < std::max(parameters.max_levels, 1))
+    {
+      Level& fine = m_levels.back();
+      const Index n = fine.A.number_of_rows;
+      std::vector<Index> coarse_index(n, -1);
+      Index number_of_coarse_points = 0;
+      Compressed_row_matrix P;
+      {
+        const Compressed_row_pattern S = strength_of_connection(fine.A, parameters.strength_threshold);
+        std::vector<signed char> type;
+        {
+          const Compressed_row_pattern ST = transpose(S);
+          type = split_coarse_fine(S, ST);
+        }
+        for(Index i = 0; i < n; ++i)
+          if(type[i] == COARSE_POINT)
+            coarse_index[i] = number_of_coarse_points++;
+        // Coarsening stalled: a direct solve on this level is cheaper than more levels.
+        if(number_of_coarse_points == 0 || number_of_coarse_points > Index(0.9 * n))
+          break;
+        P = classical_interpolation(fine.A, S, type, coarse_index, number_of_coarse_points);
+      }
+      Compressed_row_matrix R = transpose(P);
+      Compressed_row_matrix coarse_matrix;
+      {
+        const Compressed_row_matrix AP = multiply(fine.A, P);
+        coarse_matrix = multiply(R, AP);
+      }
+      fine.P = std::move(P);
+      fine.R = std::move(R);
+      m_levels.emplace_back();
+      m_levels.back().A = std::move(coarse_matrix);
+    }
+
+    for(std::size_t l = 0; l < m_levels.size(); ++l)
+    {
+      Level& level = m_levels[l];
+      const Index n = level.A.number_of_rows;
+      level.inverse_diagonal.assign(n, 0.);
+      for(Index i = 0; i < n; ++i)
+        for(Index k = level.A.row_start[i]; k < level.A.row_start[i + 1]; ++k)
+          if(level.A.column[k] == i)
+            level.inverse_diagonal[i] += level.A.value[k];
+      for(Index i = 0; i < n; ++i)
+      {
+        if(!(level.inverse_diagonal[i] > 0.) || !std::isfinite(level.inverse_diagonal[i]))
+          return false;
+        level.inverse_diagonal[i] = 1. / level.inverse_diagonal[i];
+      }
+      level.residual.assign(n, 0.);
+      if(l > 0)
+      {
+        level.solution.assign(n, 0.);
+        level.right_hand_side.assign(n, 0.);
+      }
+    }
+    return setup_coarsest_solver();
+  }
+
+  std::size_t number_of_levels() const { return m_levels.size(); }
+  const Level& level(std::size_t l) const { return m_levels[l]; }
+  const Compressed_row_matrix& fine_matrix() const { return m_levels.front().A; }
+
+  // x = M^{-1} b, with M^{-1} one V-cycle started from zero: a fixed linear operator,
+  // symmetric when A is (forward Gauss-Seidel before, backward after, R = P^T).
+  void apply_v_cycle(const double* b, double* x)
+  {
+    std::fill(x, x + m_levels.front().A.number_of_rows, 0.);
+    v_cycle(0, b, x);
+  }
+
+  std::size_t memory_bytes() const
+  {
+    std::size_t bytes = 0;
+    for(const Level& l : m_levels)
+      bytes += l.A.memory_bytes() + l.P.memory_bytes() + l.R.memory_bytes()
+             + sizeof(double) * (l.inverse_diagonal.capacity() + l.solution.capacity()
+                                 + l.right_hand_side.capacity() + l.residual.capacity());
+    return bytes;
+  }
+
+private:
+  typedef Eigen::SparseMatrix<double, Eigen::ColMajor, int> Eigen_sparse;
+
+  bool setup_coarsest_solver()
+  {
+    const Compressed_row_matrix& A = m_levels.back().A;
+    const Index n = A.number_of_rows;
+    m_sparse_coarse_solver.reset();
+    if(n <= 1000)
+    {
+      Eigen::MatrixXd dense = Eigen::MatrixXd::Zero(n, n);
+      for(Index i = 0; i < n; ++i)
+        for(Index k = A.row_start[i]; k < A.row_start[i + 1]; ++k)
+          dense(i, A.column[k]) += A.value[k];
+      m_dense_coarse_solver.compute(dense);
+      // A (numerically) singular coarsest operator means a singular system: report it instead of iterating.
+      return m_dense_coarse_solver.rcond() > 1e-13;
+    }
+    Eigen::Map<const Eigen::SparseMatrix<double, Eigen::RowMajor, int>> map(
+      n, n, Index(A.number_of_nonzeros()), A.row_start.data(), A.column.data(), A.value.data());
+    Eigen_sparse matrix = map;
+    m_sparse_coarse_solver = std::make_shared<Eigen::SparseLU<Eigen_sparse>>();
+    m_sparse_coarse_solver->compute(matrix);
+    return m_sparse_coarse_solver->info() == Eigen::Success;
+  }
+
+  void solve_coarsest(const double* b, double* x)
+  {
+    const Index n = m_levels.back().A.number_of_rows;
+    Eigen::Map<const Eigen::VectorXd> rhs(b, n);
+    Eigen::Map<Eigen::VectorXd> solution(x, n);
+    if(m_sparse_coarse_solver)
+      solution = m_sparse_coarse_solver->solve(rhs);
+    else
+      solution = m_dense_coarse_solver.solve(rhs);
+  }
+
+  static void gauss_seidel_forward(const Level& level, const double* b, double* x)
+  {
+    const Compressed_row_matrix& A = level.A;
+    const Index* row_start = A.row_start.data();
+    const Index* column = A.column.data();
+    const double* value = A.value.data();
+    const double* inverse_diagonal = level.inverse_diagonal.data();
+    for(Index i = 0; i < A.number_of_rows; ++i)
+    {
+      double defect = b[i];
+      for(Index k = row_start[i]; k < row_start[i + 1]; ++k)
+        defect -= value[k] * x[column[k]];
+      x[i] += defect * inverse_diagonal[i];
+    }
+  }
+
+  static void gauss_seidel_backward(const Level& level, const double* b, double* x)
+  {
+    const Compressed_row_matrix& A = level.A;
+    const Index* row_start = A.row_start.data();
+    const Index* column = A.column.data();
+    const double* value = A.value.data();
+    const double* inverse_diagonal = level.inverse_diagonal.data();
+    for(Index i = A.number_of_rows - 1; i >= 0; --i)
+    {
+      double defect = b[i];
+      for(Index k = row_start[i]; k < row_start[i + 1]; ++k)
+        defect -= value[k] * x[column[k]];
+      x[i] += defect * inverse_diagonal[i];
+    }
+  }
+
+  // x must be zero on entry.
+  void v_cycle(std::size_t l, const double* b, double* x)
+  {
+    if(l + 1 == m_levels.size())
+    {
+      solve_coarsest(b, x);
+      return;
+    }
+    Level& level = m_levels[l];
+    Level& coarse = m_levels[l + 1];
+    for(int s = 0; s < m_parameters.pre_smoothing_sweeps; ++s)
+      gauss_seidel_forward(level, b, x);
+    residual(level.A, x, b, level.residual.data());
+    multiply(level.R, level.residual.data(), coarse.right_hand_side.data());
+    std::fill(coarse.solution.begin(), coarse.solution.end(), 0.);
+    v_cycle(l + 1, coarse.right_hand_side.data(), coarse.solution.data());
+    multiply_add(level.P, coarse.solution.data(), x);
+    for(int s = 0; s < m_parameters.post_smoothing_sweeps; ++s)
+      gauss_seidel_backward(level, b, x);
+  }
+
+  Hierarchy_parameters m_parameters;
+  std::vector<Level> m_levels;
+  Eigen::PartialPivLU<Eigen::MatrixXd> m_dense_coarse_solver;
+  std::shared_ptr<Eigen::SparseLU<Eigen_sparse>> m_sparse_coarse_solver;
+};
+
+} // namespace AMG
+} // namespace internal
+} // namespace Spherical_parameterization
+} // namespace CGAL
+
+#endif // CGAL_SPHERICAL_PARAMETERIZATION_INTERNAL_AMG_RUGE_STUEBEN_HIERARCHY_H

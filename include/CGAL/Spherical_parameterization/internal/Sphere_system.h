@@ -1,0 +1,179 @@
+// The balance equations alpha_i x_i = sum_j w_ij x_j in compact form: for every vertex its neighbours in
+// counter-clockwise order (CSR), the weights normalized to sum to one per vertex, and for every entry (i, j)
+// the position of the entry (j, i), so that moving x_i updates the sums of its neighbours in O(degree).
+
+#ifndef CGAL_SPHERICAL_PARAMETERIZATION_INTERNAL_SPHERE_SYSTEM_H
+#define CGAL_SPHERICAL_PARAMETERIZATION_INTERNAL_SPHERE_SYSTEM_H
+
+#include <CGAL/Spherical_parameterization/Error_code.h>
+#include <CGAL/Spherical_parameterization/internal/Mesh_arrays.h>
+#include <CGAL/Spherical_parameterization/internal/Vector3.h>
+#include <CGAL/Spherical_parameterization/parameters.h>
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <cstddef>
+#include <cstdint>
+#include <functional>
+#include <string>
+#include <utility>
+#include <vector>
+
+namespace CGAL {
+namespace Spherical_parameterization {
+namespace internal {
+
+struct Sphere_system {
+  std::size_t number_of_vertices = 0;
+  std::vector<std::size_t> offsets;        // row i is [offsets[i], offsets[i+1])
+  std::vector<int> neighbors;              // counter-clockwise around the vertex, starting at the smallest index
+  std::vector<std::size_t> reverse;        // position of the entry (j, i) for the entry (i, j)
+  std::vector<double> weights;             // normalized: each row sums to one
+  std::vector<int> ring_faces;             // for the entry (i, j = ring[k]): the face (i, ring[k], ring[k+1])
+  std::vector<std::array<int, 3>> triangles;
+
+  std::size_t degree(std::size_t i) const { return offsets[i + 1] - offsets[i]; }
+};
+
+// Builds the counter-clockwise rings. Requires a closed, oriented, vertex-manifold triangle mesh.
+inline Sphere_system make_connectivity(const Mesh_arrays& mesh)
+{
+  Sphere_system system;
+  const std::size_t n = mesh.points.size();
+  system.number_of_vertices = n;
+  system.triangles = mesh.triangles;
+  system.offsets.assign(n + 1, 0);
+  for(const auto& t : mesh.triangles) for(int i : t) ++system.offsets[static_cast<std::size_t>(i) + 1];
+  for(std::size_t i = 0; i < n; ++i) system.offsets[i + 1] += system.offsets[i];
+
+  // For vertex v in face f = (v, b, c), c follows b counter-clockwise around v.
+  std::vector<std::array<int, 3>> successor(system.offsets[n]);
+  {
+    std::vector<std::size_t> fill(system.offsets.begin(), system.offsets.end() - 1);
+    for(std::size_t f = 0; f < mesh.triangles.size(); ++f) {
+      const auto& t = mesh.triangles[f];
+      for(int k = 0; k < 3; ++k)
+        successor[fill[static_cast<std::size_t>(t[k])]++] = {t[(k + 1) % 3], t[(k + 2) % 3], static_cast<int>(f)};
+    }
+  }
+  system.neighbors.resize(system.offsets[n]);
+  system.ring_faces.resize(system.offsets[n]);
+  for(std::size_t v = 0; v < n; ++v) {
+    auto first = successor.begin() + static_cast<std::ptrdiff_t>(system.offsets[v]);
+    auto last = successor.begin() + static_cast<std::ptrdiff_t>(system.offsets[v + 1]);
+    std::sort(first, last);
+    auto entry = first;
+    for(std::size_t k = system.offsets[v]; k < system.offsets[v + 1]; ++k) {
+      system.neighbors[k] = (*entry)[0];
+      system.ring_faces[k] = (*entry)[2];
+      const std::array<int, 3> key{(*entry)[1], -1, -1};
+      entry = std::lower_bound(first, last, key);
+    }
+  }
+
+  system.reverse.resize(system.neighbors.size());
+  for(std::size_t i = 0; i < n; ++i)
+    for(std::size_t k = system.offsets[i]; k < system.offsets[i + 1]; ++k) {
+      const std::size_t j = static_cast<std::size_t>(system.neighbors[k]);
+      for(std::size_t m = system.offsets[j]; m < system.offsets[j + 1]; ++m)
+        if(system.neighbors[m] == static_cast<int>(i)) { system.reverse[k] = m; break; }
+    }
+  return system;
+}
+
+inline double cotangent(const Vector3& a, const Vector3& b) // of the angle between a and b
+{
+  return dot(a, b) / length(cross(a, b));
+}
+
+inline double tangent_of_half_angle(const Vector3& a, const Vector3& b)
+{
+  return length(cross(a, b)) / (length(a) * length(b) + dot(a, b));
+}
+
+// Raw weight of neighbour j = ring[k] in the equation of vertex i, from the two faces (i, j, next), (i, prev, j).
+inline double geometric_weight(Weighting weighting, const std::vector<Vector3>& p, std::size_t i, int prev, int j, int next)
+{
+  const Vector3& xi = p[i];
+  const Vector3& xj = p[static_cast<std::size_t>(j)];
+  const Vector3& xn = p[static_cast<std::size_t>(next)];
+  const Vector3& xp = p[static_cast<std::size_t>(prev)];
+  switch(weighting) {
+    case Weighting::COTANGENT:
+      return 0.5 * (cotangent(xi - xn, xj - xn) + cotangent(xi - xp, xj - xp));
+    case Weighting::MEAN_VALUE:
+      return (tangent_of_half_angle(xj - xi, xn - xi) + tangent_of_half_angle(xp - xi, xj - xi)) / length(xj - xi);
+    default:
+      return 1.;
+  }
+}
+
+// Fills and normalizes the weights. `user_weight(i, j)` is used for Weighting::USER_MAP.
+// Returns OK, or INVALID_WEIGHTS with a message naming the first bad vertex.
+inline Error_code assign_weights(Sphere_system& system, const Mesh_arrays& mesh, Weighting weighting,
+                                 const std::function<double(std::size_t, int)>& user_weight, std::string& message)
+{
+  const std::size_t n = system.number_of_vertices;
+  system.weights.assign(system.neighbors.size(), 1.);
+  for(std::size_t i = 0; i < n; ++i) {
+    const std::size_t begin = system.offsets[i], end = system.offsets[i + 1], d = end - begin;
+    double sum = 0.;
+    for(std::size_t k = begin; k < end; ++k) {
+      const int j = system.neighbors[k];
+      const int next = system.neighbors[begin + (k - begin + 1) % d];
+      const int prev = system.neighbors[begin + (k - begin + d - 1) % d];
+      const double w = weighting == Weighting::USER_MAP ? user_weight(i, j)
+                                                        : geometric_weight(weighting, mesh.points, i, prev, j, next);
+      if(!std::isfinite(w)) {
+        message = "the weight of edge (" + std::to_string(i) + ", " + std::to_string(j) + ") is not finite (degenerate geometry?)";
+        return Error_code::INVALID_WEIGHTS;
+      }
+      system.weights[k] = w;
+      sum += w;
+    }
+    if(!(sum > 0.) || !std::isfinite(1. / sum)) {
+      message = "the weights around vertex " + std::to_string(i) + " sum to " + std::to_string(sum);
+      return Error_code::INVALID_WEIGHTS;
+    }
+    for(std::size_t k = begin; k < end; ++k) system.weights[k] /= sum;
+  }
+  return Error_code::OK;
+}
+
+// sum_j w_ij x_j
+inline Vector3 weighted_neighbor_sum(const Sphere_system& system, const std::vector<Vector3>& x, std::size_t i)
+{
+  Vector3 s;
+  for(std::size_t k = system.offsets[i]; k < system.offsets[i + 1]; ++k)
+    s += system.weights[k] * x[static_cast<std::size_t>(system.neighbors[k])];
+  return s;
+}
+
+// The tangential part of s at the unit vector x: s - (x.s) x, i.e. alpha x - s up to sign with alpha = x.s.
+inline Vector3 tangential_part(const Vector3& x, const Vector3& s) { return s - dot(x, s) * x; }
+
+struct Residuals {
+  double paper = 0.;            // (1/n) sqrt(sum |r_i|^2), the paper's Res
+  double max_tangential = 0.;   // max |r_i|
+};
+
+inline Residuals compute_residuals(const Sphere_system& system, const std::vector<Vector3>& x)
+{
+  double sum = 0., largest = 0.;
+  for(std::size_t i = 0; i < system.number_of_vertices; ++i) {
+    const double r2 = squared_length(tangential_part(x[i], weighted_neighbor_sum(system, x, i)));
+    sum += r2;
+    largest = std::max(largest, r2);
+  }
+  Residuals r;
+  r.paper = std::sqrt(sum) / static_cast<double>(std::max<std::size_t>(system.number_of_vertices, 1));
+  r.max_tangential = std::sqrt(largest);
+  return r;
+}
+
+} // namespace internal
+} // namespace Spherical_parameterization
+} // namespace CGAL
+
+#endif // CGAL_SPHERICAL_PARAMETERIZATION_INTERNAL_SPHERE_SYSTEM_H

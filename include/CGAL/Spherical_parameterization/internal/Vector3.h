@@ -1,0 +1,43 @@
+// A small value type for the numerics on flat arrays (positions on the sphere, sums of neighbours).
+
+#ifndef CGAL_SPHERICAL_PARAMETERIZATION_INTERNAL_VECTOR3_H
+#define CGAL_SPHERICAL_PARAMETERIZATION_INTERNAL_VECTOR3_H
+
+#include <cmath>
+
+namespace CGAL {
+namespace Spherical_parameterization {
+namespace internal {
+
+struct Vector3 {
+  double x = 0., y = 0., z = 0.;
+
+  Vector3() = default;
+  Vector3(double x_, double y_, double z_) : x(x_), y(y_), z(z_) {}
+
+  Vector3& operator+=(const Vector3& o) { x += o.x; y += o.y; z += o.z; return *this; }
+  Vector3& operator-=(const Vector3& o) { x -= o.x; y -= o.y; z -= o.z; return *this; }
+  Vector3& operator*=(double s) { x *= s; y *= s; z *= s; return *this; }
+  friend Vector3 operator+(Vector3 a, const Vector3& b) { return a += b; }
+  friend Vector3 operator-(Vector3 a, const Vector3& b) { return a -= b; }
+  friend Vector3 operator*(double s, Vector3 a) { return a *= s; }
+  friend Vector3 operator*(Vector3 a, double s) { return a *= s; }
+  friend Vector3 operator-(const Vector3& a) { return Vector3(-a.x, -a.y, -a.z); }
+  friend bool operator==(const Vector3& a, const Vector3& b) { return a.x == b.x && a.y == b.y && a.z == b.z; }
+};
+
+inline double dot(const Vector3& a, const Vector3& b) { return a.x * b.x + a.y * b.y + a.z * b.z; }
+inline Vector3 cross(const Vector3& a, const Vector3& b)
+{
+  return Vector3(a.y * b.z - a.z * b.y, a.z * b.x - a.x * b.z, a.x * b.y - a.y * b.x);
+}
+inline double squared_length(const Vector3& a) { return dot(a, a); }
+inline double length(const Vector3& a) { return std::sqrt(dot(a, a)); }
+inline double determinant(const Vector3& a, const Vector3& b, const Vector3& c) { return dot(a, cross(b, c)); }
+inline bool is_finite(const Vector3& a) { return std::isfinite(a.x) && std::isfinite(a.y) && std::isfinite(a.z); }
+
+} // namespace internal
+} // namespace Spherical_parameterization
+} // namespace CGAL
+
+#endif // CGAL_SPHERICAL_PARAMETERIZATION_INTERNAL_VECTOR3_H

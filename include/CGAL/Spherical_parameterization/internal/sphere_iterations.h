@@ -1,0 +1,258 @@
+// Stages 2 and 3 of the paper on the flat arrays of a Sphere_system:
+//  - projected Gauss-Seidel (Section 3.2), stopped as soon as the residual grows;
+//  - local Newton (Section 3.3): each vertex in turn, in a frame where it sits on the x-axis, takes a Newton step
+//    on (theta, phi) that lowers the squared residuals of its one-ring, with the paper's line search.
+// Both can preserve bijectivity as the paper's conclusion proposes: a move that would turn one of the vertex's
+// positively oriented spherical triangles (exact predicate) non-positive is pulled back towards the previous
+// position, and dropped if that does not help.
+
+#ifndef CGAL_SPHERICAL_PARAMETERIZATION_INTERNAL_SPHERE_ITERATIONS_H
+#define CGAL_SPHERICAL_PARAMETERIZATION_INTERNAL_SPHERE_ITERATIONS_H
+
+#include <CGAL/Spherical_parameterization/internal/Sphere_system.h>
+#include <CGAL/Spherical_parameterization/internal/sphere_orientation.h>
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <cstddef>
+#include <functional>
+#include <vector>
+
+namespace CGAL {
+namespace Spherical_parameterization {
+namespace internal {
+
+struct Iteration_options {
+  double tolerance = 1e-6;
+  std::size_t max_gauss_seidel_sweeps = 1000;
+  std::size_t max_newton_sweeps = 200000;
+  double max_seconds = -1.;           // negative: no budget
+  bool preserve_bijectivity = true;
+  std::function<void(const char* stage, std::size_t sweep, double residual, std::size_t invalid_faces)> progress;
+};
+
+struct Iteration_report {
+  std::size_t sweeps = 0;
+  double residual = -1.;
+  bool converged = false;
+  bool out_of_time = false;
+  std::size_t rejected_moves = 0;
+};
+
+// Positions, cached neighbour sums s_i = sum_j w_ij x_j, and which faces are positively oriented.
+class Sphere_state {
+public:
+  Sphere_state(const Sphere_system& system, std::vector<Vector3>& x) : system_(system), x_(x)
+  {
+    face_positive_.assign(system.triangles.size(), 0);
+    for(std::size_t f = 0; f < system.triangles.size(); ++f) {
+      const auto& t = system.triangles[f];
+      face_positive_[f] = is_positive(x[static_cast<std::size_t>(t[0])], x[static_cast<std::size_t>(t[1])], x[static_cast<std::size_t>(t[2])]);
+      invalid_faces_ += !face_positive_[f];
+    }
+    refresh_sums();
+  }
+
+  const Sphere_system& system() const { return system_; }
+  std::vector<Vector3>& positions() { return x_; }
+  const Vector3& sum(std::size_t i) const { return s_[i]; }
+  std::size_t invalid_faces() const { return invalid_faces_; }
+
+  // Recomputes every s_i (removes the drift of incremental updates) and returns the paper's Res.
+  double refresh_sums()
+  {
+    const std::size_t n = system_.number_of_vertices;
+    s_.resize(n);
+    double total = 0.;
+    for(std::size_t i = 0; i < n; ++i) {
+      s_[i] = weighted_neighbor_sum(system_, x_, i);
+      total += squared_length(cross(x_[i], s_[i]));
+    }
+    return std::sqrt(total) / static_cast<double>(std::max<std::size_t>(n, 1));
+  }
+
+  // A move of vertex i to y may not turn a positive incident face non-positive.
+  bool is_acceptable(std::size_t i, const Vector3& y) const
+  {
+    const std::size_t begin = system_.offsets[i], end = system_.offsets[i + 1], d = end - begin;
+    for(std::size_t k = begin; k < end; ++k) {
+      if(!face_positive_[static_cast<std::size_t>(system_.ring_faces[k])]) continue;
+      const Vector3& a = x_[static_cast<std::size_t>(system_.neighbors[k])];
+      const Vector3& b = x_[static_cast<std::size_t>(system_.neighbors[begin + (k - begin + 1) % d])];
+      if(!is_positive(y, a, b)) return false;
+    }
+    return true;
+  }
+
+  void move(std::size_t i, const Vector3& y)
+  {
+    const Vector3 delta = y - x_[i];
+    x_[i] = y;
+    const std::size_t begin = system_.offsets[i], end = system_.offsets[i + 1], d = end - begin;
+    for(std::size_t k = begin; k < end; ++k) {
+      const std::size_t j = static_cast<std::size_t>(system_.neighbors[k]);
+      s_[j] += system_.weights[system_.reverse[k]] * delta;
+      const std::size_t f = static_cast<std::size_t>(system_.ring_faces[k]);
+      const Vector3& b = x_[static_cast<std::size_t>(system_.neighbors[begin + (k - begin + 1) % d])];
+      const char positive = is_positive(y, x_[j], b);
+      invalid_faces_ = invalid_faces_ + (face_positive_[f] ? 1 : 0) - (positive ? 1 : 0);
+      face_positive_[f] = positive;
+    }
+  }
+
+  // Moves i to the first of y, then points pulled back towards x_i, that is acceptable; false if none is.
+  bool move_preserving_orientation(std::size_t i, Vector3 y, bool preserve)
+  {
+    if(preserve) {
+      const Vector3 start = x_[i];
+      int halvings = 0;
+      while(!is_acceptable(i, y)) {
+        if(++halvings > 12) return false;
+        y = start + 0.5 * (y - start);
+        y *= 1. / length(y);
+      }
+    }
+    move(i, y);
+    return true;
+  }
+
+private:
+  const Sphere_system& system_;
+  std::vector<Vector3>& x_;
+  std::vector<Vector3> s_;
+  std::vector<char> face_positive_;
+  std::size_t invalid_faces_ = 0;
+};
+
+class Stopwatch {
+public:
+  Stopwatch() : start_(std::chrono::steady_clock::now()) {}
+  double seconds() const { return std::chrono::duration<double>(std::chrono::steady_clock::now() - start_).count(); }
+private:
+  std::chrono::steady_clock::time_point start_;
+};
+
+// Paper, Section 3.2, with lambda = 1: x_i <- s_i / |s_i| in turn, while Res decreases. The last iterate whose
+// residual did not grow is kept.
+inline Iteration_report projected_gauss_seidel(Sphere_state& state, const Iteration_options& options, const Stopwatch& clock)
+{
+  Iteration_report report;
+  const Sphere_system& system = state.system();
+  std::vector<Vector3>& x = state.positions();
+  double residual = state.refresh_sums();
+  std::vector<Vector3> previous;
+  while(report.sweeps < options.max_gauss_seidel_sweeps) {
+    if(options.max_seconds >= 0. && clock.seconds() > options.max_seconds) { report.out_of_time = true; break; }
+    previous = x;
+    for(std::size_t i = 0; i < system.number_of_vertices; ++i) {
+      const Vector3 s = state.sum(i);
+      const double norm = length(s);
+      if(!(norm > 0.)) continue;
+      if(!state.move_preserving_orientation(i, s * (1. / norm), options.preserve_bijectivity)) ++report.rejected_moves;
+    }
+    ++report.sweeps;
+    const double next = state.refresh_sums();
+    if(options.progress) options.progress("gauss-seidel", report.sweeps, next, state.invalid_faces());
+    if(!(next < residual)) {
+      // Res grew: return to the previous iterate (faces flags follow the positions).
+      for(std::size_t i = 0; i < system.number_of_vertices; ++i)
+        if(!(x[i] == previous[i])) state.move(i, previous[i]);
+      state.refresh_sums();
+      break;
+    }
+    residual = next;
+    if(residual < options.tolerance && state.invalid_faces() == 0) { report.converged = true; break; }
+  }
+  report.residual = residual;
+  return report;
+}
+
+// The squared residuals of the one-ring of i if x_i moved to y: |y x s_i|^2 + sum_k |x_k x (s_k + w_ki (y - x_i))|^2.
+inline double one_ring_energy(const Sphere_state& state, std::vector<Vector3>& x, std::size_t i, const Vector3& y)
+{
+  const Sphere_system& system = state.system();
+  const Vector3 delta = y - x[i];
+  double energy = squared_length(cross(y, state.sum(i)));
+  for(std::size_t k = system.offsets[i]; k < system.offsets[i + 1]; ++k) {
+    const std::size_t j = static_cast<std::size_t>(system.neighbors[k]);
+    energy += squared_length(cross(x[j], state.sum(j) + system.weights[system.reverse[k]] * delta));
+  }
+  return energy;
+}
+
+// Paper, Section 3.3. Rotating the one-ring so that x_i is the x-axis amounts to the frame (x_i, t1, t2) with
+// x(theta, phi) = cos(phi) cos(theta) x_i + cos(phi) sin(theta) t1 + sin(phi) t2, so theta = phi = 0 at x_i.
+// The 2x2 system is the Newton (Gauss-Newton) system of the one-ring energy in (theta, phi); the line search
+// starts at lambda = 1 and halves while that lowers the energy further, down to lambda > 0.05.
+inline bool local_newton_step(Sphere_state& state, std::size_t i, bool preserve)
+{
+  const Sphere_system& system = state.system();
+  std::vector<Vector3>& x = state.positions();
+  const Vector3 xi = x[i];
+  const Vector3 helper = std::abs(xi.x) < 0.6 ? Vector3(1, 0, 0) : (std::abs(xi.y) < 0.6 ? Vector3(0, 1, 0) : Vector3(0, 0, 1));
+  Vector3 t1 = cross(xi, helper);
+  t1 *= 1. / length(t1);
+  const Vector3 t2 = cross(xi, t1);
+
+  // Residual vectors r = x_k x s_k and their derivatives along t1 (theta) and t2 (phi).
+  double h11 = 0., h12 = 0., h22 = 0., g1 = 0., g2 = 0.;
+  auto accumulate = [&](const Vector3& r, const Vector3& d1, const Vector3& d2) {
+    h11 += dot(d1, d1); h12 += dot(d1, d2); h22 += dot(d2, d2);
+    g1 += dot(d1, r); g2 += dot(d2, r);
+  };
+  const Vector3& si = state.sum(i);
+  accumulate(cross(xi, si), cross(t1, si), cross(t2, si));
+  for(std::size_t k = system.offsets[i]; k < system.offsets[i + 1]; ++k) {
+    const std::size_t j = static_cast<std::size_t>(system.neighbors[k]);
+    const double w = system.weights[system.reverse[k]];
+    accumulate(cross(x[j], state.sum(j)), w * cross(x[j], t1), w * cross(x[j], t2));
+  }
+  const double det = h11 * h22 - h12 * h12;
+  if(!(det > 1e-300)) return false;
+  const double theta = -(h22 * g1 - h12 * g2) / det;
+  const double phi = -(h11 * g2 - h12 * g1) / det;
+
+  auto position = [&](double lambda) {
+    const double a = lambda * theta, b = lambda * phi;
+    return std::cos(b) * std::cos(a) * xi + std::cos(b) * std::sin(a) * t1 + std::sin(b) * t2;
+  };
+  const double current = one_ring_energy(state, x, i, xi);
+  double best_lambda = 1.;
+  double best = one_ring_energy(state, x, i, position(1.));
+  for(double lambda = 0.5; lambda > 0.05; lambda *= 0.5) {
+    const double e = one_ring_energy(state, x, i, position(lambda));
+    if(!(e < best)) break;
+    best = e;
+    best_lambda = lambda;
+  }
+  if(!(best < current)) return false;
+  Vector3 y = position(best_lambda);
+  y *= 1. / length(y);
+  return state.move_preserving_orientation(i, y, preserve);
+}
+
+inline Iteration_report local_newton(Sphere_state& state, const Iteration_options& options, const Stopwatch& clock)
+{
+  Iteration_report report;
+  const Sphere_system& system = state.system();
+  double residual = state.refresh_sums();
+  while(!(residual < options.tolerance && state.invalid_faces() == 0)) {
+    if(report.sweeps >= options.max_newton_sweeps) break;
+    if(options.max_seconds >= 0. && clock.seconds() > options.max_seconds) { report.out_of_time = true; break; }
+    for(std::size_t i = 0; i < system.number_of_vertices; ++i)
+      if(!local_newton_step(state, i, options.preserve_bijectivity)) ++report.rejected_moves;
+    ++report.sweeps;
+    residual = state.refresh_sums();
+    if(options.progress) options.progress("newton", report.sweeps, residual, state.invalid_faces());
+  }
+  report.residual = residual;
+  report.converged = residual < options.tolerance && state.invalid_faces() == 0;
+  return report;
+}
+
+} // namespace internal
+} // namespace Spherical_parameterization
+} // namespace CGAL
+
+#endif // CGAL_SPHERICAL_PARAMETERIZATION_INTERNAL_SPHERE_ITERATIONS_H

@@ -1,0 +1,130 @@
+// Named parameters of the Spherical_parameterization package.
+//
+// CGAL 5.5's chain members (`.vertex_point_map(...)`) come from a fixed list, so the package's own
+// parameters are free functions: `parameters::tolerance(1e-8)` starts a chain, and every function takes an
+// optional chain to extend, e.g. `parameters::weighting(Weighting::MEAN_VALUE, CGAL::parameters::verbose(true))`.
+// `parameters::combine(np1, np2, ...)` joins any chains (ours and CGAL's). CGAL functions ignore our tags.
+
+#ifndef CGAL_SPHERICAL_PARAMETERIZATION_PARAMETERS_H
+#define CGAL_SPHERICAL_PARAMETERIZATION_PARAMETERS_H
+
+#include <CGAL/Named_function_parameters.h>
+
+#include <cstddef>
+#include <type_traits>
+
+namespace CGAL {
+namespace Spherical_parameterization {
+
+/// \ingroup PkgSphericalParameterizationRef
+/// The edge weights `w_ij` of the balance equations `alpha_i x_i = sum_j w_ij x_j`.
+enum class Weighting {
+  UNIFORM,     ///< Tutte weights `w_ij = 1`: symmetric and positive, the case covered by the theory (default).
+  COTANGENT,   ///< Conformal weights `(cot a_ij + cot b_ij) / 2`: symmetric, may be negative.
+  MEAN_VALUE,  ///< Floater's mean-value weights: positive, not symmetric.
+  USER_MAP     ///< Weights read from the `halfedge_weight_map` named parameter.
+};
+
+/// \ingroup PkgSphericalParameterizationRef
+/// The solver of stage 3 (after projected Gauss-Seidel).
+enum class Nonlinear_solver {
+  LOCAL_NEWTON  ///< The paper's local Newton iteration on (theta, phi) with line search (Section 3.3).
+};
+
+namespace internal_np {
+// Tag types of the package's own named parameters.
+enum weighting_t { weighting };
+enum halfedge_weight_map_t { halfedge_weight_map };
+enum tolerance_t { tolerance };
+enum max_gauss_seidel_sweeps_t { max_gauss_seidel_sweeps };
+enum max_newton_sweeps_t { max_newton_sweeps };
+enum max_seconds_t { max_seconds };
+enum preserve_bijectivity_t { preserve_bijectivity };
+enum nonlinear_solver_t { nonlinear_solver };
+enum metis_seed_t { metis_seed };
+} // namespace internal_np
+
+namespace parameters {
+
+using CGAL::parameters::choose_parameter;
+using CGAL::parameters::get_parameter;
+using CGAL::parameters::default_values;
+
+#define CGAL_SPHERICAL_PARAMETERIZATION_NAMED_PARAMETER(NAME)                                           \
+  template <typename K>                                                                                \
+  CGAL::Named_function_parameters<K, internal_np::NAME##_t> NAME(const K& k)                           \
+  {                                                                                                    \
+    return CGAL::Named_function_parameters<K, internal_np::NAME##_t>(k);                               \
+  }                                                                                                    \
+  template <typename K, typename T, typename Tag, typename Base>                                       \
+  CGAL::Named_function_parameters<K, internal_np::NAME##_t, CGAL::Named_function_parameters<T, Tag, Base>> \
+  NAME(const K& k, const CGAL::Named_function_parameters<T, Tag, Base>& np)                            \
+  {                                                                                                    \
+    return CGAL::Named_function_parameters<K, internal_np::NAME##_t,                                   \
+                                           CGAL::Named_function_parameters<T, Tag, Base>>(k, np);      \
+  }
+
+/// Weighting policy (`Weighting`), default `Weighting::UNIFORM`.
+CGAL_SPHERICAL_PARAMETERIZATION_NAMED_PARAMETER(weighting)
+/// A readable property map from halfedges to `double`: the weight of `source(h)` in the equation of `target(h)`.
+/// Implies `Weighting::USER_MAP` when `weighting` is not given.
+CGAL_SPHERICAL_PARAMETERIZATION_NAMED_PARAMETER(halfedge_weight_map)
+/// Stop when the paper's residual `Res` is below this value (default `1e-6`).
+CGAL_SPHERICAL_PARAMETERIZATION_NAMED_PARAMETER(tolerance)
+/// Iteration cap of stage 2 (projected Gauss-Seidel sweeps, default 1000).
+CGAL_SPHERICAL_PARAMETERIZATION_NAMED_PARAMETER(max_gauss_seidel_sweeps)
+/// Iteration cap of stage 3 (sweeps of the nonlinear solver, default 200000).
+CGAL_SPHERICAL_PARAMETERIZATION_NAMED_PARAMETER(max_newton_sweeps)
+/// Wall-clock budget of stages 2 and 3 in seconds (default: unlimited).
+CGAL_SPHERICAL_PARAMETERIZATION_NAMED_PARAMETER(max_seconds)
+/// Backtrack any vertex move that would make one of its spherical triangles non-positive (default `true`).
+CGAL_SPHERICAL_PARAMETERIZATION_NAMED_PARAMETER(preserve_bijectivity)
+/// Solver of stage 3 (`Nonlinear_solver`), default `Nonlinear_solver::LOCAL_NEWTON`.
+CGAL_SPHERICAL_PARAMETERIZATION_NAMED_PARAMETER(nonlinear_solver)
+/// Seed of METIS' randomized separator (default 0): the same seed gives bitwise identical output.
+CGAL_SPHERICAL_PARAMETERIZATION_NAMED_PARAMETER(metis_seed)
+
+#undef CGAL_SPHERICAL_PARAMETERIZATION_NAMED_PARAMETER
+
+namespace internal {
+// Appends every parameter of `np` (outermost first) on top of `base`.
+template <typename Base>
+const Base& append(const CGAL::Named_function_parameters<bool, CGAL::internal_np::all_default_t>&,
+                   const Base& base)
+{
+  return base;
+}
+
+template <typename T, typename Tag, typename Base>
+auto append(const CGAL::Named_function_parameters<T, Tag, CGAL::internal_np::No_property>& np,
+            const Base& base)
+{
+  return CGAL::Named_function_parameters<T, Tag, Base>(np.v, base);
+}
+
+template <typename T, typename Tag, typename Inner, typename Base>
+auto append(const CGAL::Named_function_parameters<T, Tag, Inner>& np, const Base& base)
+{
+  auto appended_inner = append(static_cast<const Inner&>(np), base);
+  return CGAL::Named_function_parameters<T, Tag, std::decay_t<decltype(appended_inner)>>(np.v, appended_inner);
+}
+} // namespace internal
+
+/// Joins named-parameter chains (the package's and CGAL's) into one.
+template <typename NP>
+const NP& combine(const NP& np)
+{
+  return np;
+}
+
+template <typename NP1, typename NP2, typename... NPs>
+auto combine(const NP1& np1, const NP2& np2, const NPs&... rest)
+{
+  return combine(internal::append(np1, np2), rest...);
+}
+
+} // namespace parameters
+} // namespace Spherical_parameterization
+} // namespace CGAL
+
+#endif // CGAL_SPHERICAL_PARAMETERIZATION_PARAMETERS_H

@@ -1,0 +1,302 @@
+// The package's entry point: a bijective map of a closed genus-0 triangle mesh onto the unit sphere.
+
+#ifndef CGAL_SPHERICAL_PARAMETERIZATION_SPHERICAL_PARAMETERIZE_H
+#define CGAL_SPHERICAL_PARAMETERIZATION_SPHERICAL_PARAMETERIZE_H
+
+#include <CGAL/Spherical_parameterization/Error_code.h>
+#include <CGAL/Spherical_parameterization/Result.h>
+#include <CGAL/Spherical_parameterization/check_input.h>
+#include <CGAL/Spherical_parameterization/internal/Mesh_arrays.h>
+#include <CGAL/Spherical_parameterization/internal/Sphere_system.h>
+#include <CGAL/Spherical_parameterization/internal/disk_embedding.h>
+#include <CGAL/Spherical_parameterization/internal/sphere_iterations.h>
+#include <CGAL/Spherical_parameterization/internal/sphere_orientation.h>
+#include <CGAL/Spherical_parameterization/internal/two_disk_partition.h>
+#include <CGAL/Spherical_parameterization/parameters.h>
+
+#include <CGAL/Eigen_solver_traits.h>
+#include <CGAL/Eigen_sparse_matrix.h>
+#include <CGAL/Named_function_parameters.h>
+#include <CGAL/boost/graph/named_params_helper.h>
+#include <CGAL/property_map.h>
+#include <CGAL/tags.h>
+
+#include <Eigen/SparseLU>
+
+#include <algorithm>
+#include <cstdint>
+#include <iostream>
+#include <string>
+#include <type_traits>
+#include <utility>
+#include <vector>
+
+namespace CGAL {
+namespace Spherical_parameterization {
+
+/// \ingroup PkgSphericalParameterizationRef
+/// The linear solver of the disk stage when none is given: Eigen's sparse LU (CGAL SMP keeps identity rows
+/// for the border, so the system is not symmetric).
+using Default_disk_solver_traits =
+    CGAL::Eigen_solver_traits<Eigen::SparseLU<CGAL::Eigen_sparse_matrix<double>::EigenType, Eigen::COLAMDOrdering<int>>>;
+
+namespace internal {
+
+struct Pipeline_options {
+  Weighting weighting = Weighting::UNIFORM;
+  int metis_seed = 0;
+  bool verbose = false;
+  Iteration_options iterations;
+};
+
+// Stage 1 for one weighting: two disks, Moebius inversion and inverse stereographic projection.
+template <typename SolverTraits>
+bool initial_sphere(const Mesh_arrays& mesh, const Sphere_system& system, const Two_disk_partition& partition,
+                    Weighting weighting, const SolverTraits& solver, std::vector<Vector3>& x)
+{
+  const std::size_t n = system.number_of_vertices;
+  std::vector<double> u(n, 0.), v(n, 0.);
+  std::vector<char> side(n, 0);  // 1: disk A, 2: disk B (the loop counts as A)
+  for(std::size_t f = 0; f < system.triangles.size(); ++f)
+    for(int g : system.triangles[f])
+      if(partition.face_in_disk_a[f]) side[static_cast<std::size_t>(g)] = 1;
+      else if(side[static_cast<std::size_t>(g)] == 0) side[static_cast<std::size_t>(g)] = 2;
+  if(!embed_one_disk(mesh, system, partition, 0, weighting, solver, u, v)) return false;
+  if(!embed_one_disk(mesh, system, partition, 1, weighting, solver, u, v)) return false;
+  x.resize(n);
+  for(std::size_t i = 0; i < n; ++i) x[i] = inverse_stereographic(u[i], v[i], side[i] == 2);
+  return true;
+}
+
+template <typename SolverTraits>
+Result run_pipeline(const Mesh_arrays& mesh, Sphere_system& system, const Pipeline_options& options,
+                    const SolverTraits& solver, std::vector<Vector3>& x)
+{
+  Result result;
+  Stopwatch total;
+  result.number_of_vertices = system.number_of_vertices;
+  result.number_of_faces = system.triangles.size();
+
+  // Stage 1.
+  Stopwatch stage;
+  const Two_disk_partition partition = split_into_two_disks(system, options.metis_seed);
+  if(!partition.valid) {
+    result.status = Error_code::PARTITION_FAILED;
+    result.message = get_error_message(result.status);
+    return result;
+  }
+  result.separator_size = partition.separator_size;
+  result.cut_loop_length = partition.loop.size();
+  bool embedded = initial_sphere(mesh, system, partition, options.weighting, solver, x);
+  Sphere_certificate start = embedded ? certify(system.triangles, x) : Sphere_certificate();
+  if(options.weighting != Weighting::UNIFORM && (!embedded || start.flipped_faces > 0)) {
+    // Weights that may be negative or non-symmetric can fold the disks: Tutte's disks cannot.
+    std::vector<Vector3> uniform_start;
+    if(initial_sphere(mesh, system, partition, Weighting::UNIFORM, solver, uniform_start)) {
+      const Sphere_certificate uniform_certificate = certify(system.triangles, uniform_start);
+      if(!embedded || uniform_certificate.flipped_faces < start.flipped_faces) {
+        x.swap(uniform_start);
+        start = uniform_certificate;
+        embedded = true;
+        result.uniform_initial_guess_fallback = true;
+      }
+    }
+  }
+  if(!embedded) {
+    result.status = Error_code::DISK_EMBEDDING_FAILED;
+    result.message = get_error_message(result.status);
+    return result;
+  }
+  result.initial_flipped_faces = start.flipped_faces;
+  result.initial_guess.iterations = 2;
+  result.initial_guess.residual = compute_residuals(system, x).paper;
+  result.initial_guess.seconds = stage.seconds();
+  if(options.verbose)
+    std::cerr << "stage 1: separator " << result.separator_size << " vertices, loop " << result.cut_loop_length
+              << " vertices, Res " << result.initial_guess.residual << ", non-positive faces " << start.flipped_faces
+              << ", " << result.initial_guess.seconds << " s\n";
+
+  // Stages 2 and 3.
+  Sphere_state state(system, x);
+  Stopwatch iterations_clock;
+  stage = Stopwatch();
+  const Iteration_report gauss_seidel = projected_gauss_seidel(state, options.iterations, iterations_clock);
+  result.gauss_seidel.iterations = gauss_seidel.sweeps;
+  result.gauss_seidel.residual = gauss_seidel.residual;
+  result.gauss_seidel.seconds = stage.seconds();
+  if(options.verbose)
+    std::cerr << "stage 2: " << gauss_seidel.sweeps << " sweeps, Res " << gauss_seidel.residual << ", non-positive faces "
+              << state.invalid_faces() << ", " << result.gauss_seidel.seconds << " s\n";
+
+  stage = Stopwatch();
+  Iteration_report newton;
+  if(!gauss_seidel.converged && !gauss_seidel.out_of_time) newton = local_newton(state, options.iterations, iterations_clock);
+  else newton.residual = gauss_seidel.residual;
+  result.newton.iterations = newton.sweeps;
+  result.newton.residual = newton.residual;
+  result.newton.seconds = stage.seconds();
+  result.rejected_moves = gauss_seidel.rejected_moves + newton.rejected_moves;
+  if(options.verbose)
+    std::cerr << "stage 3: " << newton.sweeps << " sweeps, Res " << newton.residual << ", non-positive faces "
+              << state.invalid_faces() << ", " << result.newton.seconds << " s\n";
+
+  // Certificate and figures, recomputed from scratch on the final positions.
+  const Residuals residuals = compute_residuals(system, x);
+  const Sphere_certificate certificate = certify(system.triangles, x);
+  result.residual = residuals.paper;
+  result.max_tangential_residual = residuals.max_tangential;
+  result.flipped_faces = certificate.flipped_faces;
+  result.total_signed_area = certificate.total_signed_area;
+  result.bijective = certificate.bijective;
+  const bool converged = result.residual < options.iterations.tolerance;
+  result.status = !converged ? Error_code::NOT_CONVERGED : (certificate.bijective ? Error_code::OK : Error_code::NOT_BIJECTIVE);
+  result.message = get_error_message(result.status);
+  if(result.status != Error_code::OK)
+    result.message += " (Res " + std::to_string(result.residual) + ", " + std::to_string(result.flipped_faces) + " flipped faces)";
+  result.total_seconds = total.seconds();
+  return result;
+}
+
+} // namespace internal
+
+/// \ingroup PkgSphericalParameterizationRef
+/// Maps the closed, connected, genus-0 triangle mesh `tm` onto the unit sphere with the method of Saba, Yavneh,
+/// Gotsman and Sheffer: an initial guess from two planar disks (METIS separator, CGAL's fixed-border
+/// parameterizers, Moebius inversion, inverse stereographic projection), projected Gauss-Seidel while the
+/// residual decreases, then local Newton steps until the residual `Res` is below the tolerance. The output is
+/// certified: every spherical triangle is positively oriented under an exact predicate and the areas add up to
+/// 4 pi (`Result::bijective`); only then is the status `Error_code::OK`.
+///
+/// The mesh is never modified. On an input error nothing is written to `vsm`; otherwise `vsm` receives the
+/// final (best) iterate, also when the status is `NOT_CONVERGED` or `NOT_BIJECTIVE`.
+///
+/// \tparam ConcurrencyTag `CGAL::Sequential_tag` (the only one implemented so far).
+/// \tparam TriangleMesh a model of `FaceListGraph`.
+/// \tparam VertexSphereMap a model of `WritablePropertyMap` from vertices to a `Point_3` constructible from three doubles.
+/// \tparam NamedParameters a sequence of named parameters (the package's own, from
+///         `CGAL::Spherical_parameterization::parameters`, and CGAL's).
+///
+/// \cgalNamedParamsBegin
+///   \cgalParamNBegin{vertex_point_map} \cgalParamDescription{the points of the vertices}
+///     \cgalParamDefault{`boost::get(CGAL::vertex_point, tm)`} \cgalParamNEnd
+///   \cgalParamNBegin{vertex_index_map} \cgalParamDescription{indices `0..num_vertices(tm)-1`}
+///     \cgalParamDefault{an automatically indexed internal map} \cgalParamNEnd
+///   \cgalParamNBegin{weighting} \cgalParamDescription{the weights `w_ij` (`Weighting`)}
+///     \cgalParamDefault{`Weighting::UNIFORM`, or `Weighting::USER_MAP` when `halfedge_weight_map` is given} \cgalParamNEnd
+///   \cgalParamNBegin{halfedge_weight_map} \cgalParamDescription{readable map halfedge -> double: the weight of `source(h)` in the equation of `target(h)`}
+///     \cgalParamDefault{none} \cgalParamNEnd
+///   \cgalParamNBegin{tolerance} \cgalParamDescription{stop when `Res` is below it} \cgalParamDefault{`1e-6`} \cgalParamNEnd
+///   \cgalParamNBegin{max_gauss_seidel_sweeps} \cgalParamDescription{cap of stage 2} \cgalParamDefault{1000} \cgalParamNEnd
+///   \cgalParamNBegin{max_newton_sweeps} \cgalParamDescription{cap of stage 3} \cgalParamDefault{200000} \cgalParamNEnd
+///   \cgalParamNBegin{max_seconds} \cgalParamDescription{time budget of stages 2 and 3} \cgalParamDefault{unlimited} \cgalParamNEnd
+///   \cgalParamNBegin{preserve_bijectivity} \cgalParamDescription{backtrack moves that would fold a triangle}
+///     \cgalParamDefault{`true`} \cgalParamNEnd
+///   \cgalParamNBegin{metis_seed} \cgalParamDescription{seed of METIS} \cgalParamDefault{0} \cgalParamNEnd
+///   \cgalParamNBegin{sparse_linear_solver} \cgalParamDescription{a model of `SparseLinearAlgebraTraits_d` for the disk stage,
+///     e.g. `AMG_solver_traits`} \cgalParamDefault{`Default_disk_solver_traits`} \cgalParamNEnd
+///   \cgalParamNBegin{verbose} \cgalParamDescription{print the figures of each stage to `std::cerr`} \cgalParamDefault{`false`} \cgalParamNEnd
+/// \cgalNamedParamsEnd
+///
+/// \return a `Result` with the status, the residuals, the exact flip count and the figures of each stage.
+template <typename ConcurrencyTag = CGAL::Sequential_tag, typename TriangleMesh, typename VertexSphereMap,
+          typename NamedParameters = CGAL::parameters::Default_named_parameters>
+Result spherical_parameterize(const TriangleMesh& tm, VertexSphereMap vsm,
+                              const NamedParameters& np = CGAL::parameters::default_values())
+{
+  static_assert(std::is_same<ConcurrencyTag, CGAL::Sequential_tag>::value,
+                "spherical_parameterize: only CGAL::Sequential_tag is implemented");
+  using CGAL::parameters::choose_parameter;
+  using CGAL::parameters::get_parameter;
+  using CGAL::parameters::is_default_parameter;
+
+  internal::Stopwatch clock;
+  auto vpm = choose_parameter(get_parameter(np, CGAL::internal_np::vertex_point), get_const_property_map(CGAL::vertex_point, tm));
+  auto vim = CGAL::get_initialized_vertex_index_map(tm, np);
+
+  const internal::Mesh_arrays mesh = internal::read_face_graph(tm, vpm, vim);
+  const Input_check check = internal::check_mesh_arrays(mesh);
+  if(!check) {
+    Result result;
+    result.status = check.status;
+    result.message = check.message;
+    result.number_of_vertices = mesh.points.size();
+    result.number_of_faces = mesh.polygons.size();
+    return result;
+  }
+
+  constexpr bool has_user_weights = !is_default_parameter<NamedParameters, internal_np::halfedge_weight_map_t>::value;
+  internal::Pipeline_options options;
+  options.weighting = choose_parameter(get_parameter(np, internal_np::weighting),
+                                       has_user_weights ? Weighting::USER_MAP : Weighting::UNIFORM);
+  options.metis_seed = choose_parameter(get_parameter(np, internal_np::metis_seed), 0);
+  options.verbose = choose_parameter(get_parameter(np, CGAL::internal_np::verbose), false);
+  options.iterations.tolerance = choose_parameter(get_parameter(np, internal_np::tolerance), 1e-6);
+  options.iterations.max_gauss_seidel_sweeps =
+      choose_parameter(get_parameter(np, internal_np::max_gauss_seidel_sweeps), std::size_t(1000));
+  options.iterations.max_newton_sweeps = choose_parameter(get_parameter(np, internal_np::max_newton_sweeps), std::size_t(200000));
+  options.iterations.max_seconds = choose_parameter(get_parameter(np, internal_np::max_seconds), -1.);
+  options.iterations.preserve_bijectivity = choose_parameter(get_parameter(np, internal_np::preserve_bijectivity), true);
+  if(options.verbose) {
+    double last_print = -1.;
+    options.iterations.progress = [clock, last_print](const char* stage, std::size_t sweep, double residual, std::size_t invalid) mutable {
+      const double now = clock.seconds();
+      if(now - last_print < 1.) return;
+      last_print = now;
+      std::cerr << "  " << stage << " sweep " << sweep << ": Res " << residual << ", non-positive faces " << invalid
+                << ", " << now << " s\n";
+    };
+  }
+
+  internal::Sphere_system system = internal::make_connectivity(mesh);
+  std::string weight_message;
+  std::function<double(std::size_t, int)> user_weight;
+  std::vector<std::pair<std::uint64_t, double>> user_table;
+  if constexpr(has_user_weights) {
+    auto weight_map = get_parameter(np, internal_np::halfedge_weight_map);
+    for(auto h : halfedges(tm)) {
+      if(is_border(h, tm)) continue;
+      const std::uint64_t i = static_cast<std::uint64_t>(get(vim, target(h, tm)));
+      const std::uint64_t j = static_cast<std::uint64_t>(get(vim, source(h, tm)));
+      user_table.emplace_back(i << 32 | j, static_cast<double>(get(weight_map, h)));
+    }
+    std::sort(user_table.begin(), user_table.end());
+    user_weight = [&user_table](std::size_t i, int j) {
+      const std::uint64_t key = static_cast<std::uint64_t>(i) << 32 | static_cast<std::uint64_t>(j);
+      auto it = std::lower_bound(user_table.begin(), user_table.end(), std::make_pair(key, -1e300));
+      return it != user_table.end() && it->first == key ? it->second : 0.;
+    };
+  } else if(options.weighting == Weighting::USER_MAP) {
+    Result result;
+    result.status = Error_code::INVALID_WEIGHTS;
+    result.message = std::string(get_error_message(result.status)) + ": Weighting::USER_MAP needs the halfedge_weight_map parameter";
+    return result;
+  }
+  const Error_code weight_status = internal::assign_weights(system, mesh, options.weighting, user_weight, weight_message);
+  if(weight_status != Error_code::OK) {
+    Result result;
+    result.status = weight_status;
+    result.message = std::string(get_error_message(weight_status)) + ": " + weight_message;
+    return result;
+  }
+
+  using Solver = typename CGAL::internal_np::Lookup_named_param_def<CGAL::internal_np::sparse_linear_solver_t, NamedParameters,
+                                                                    Default_disk_solver_traits>::type;
+  const Solver solver = choose_parameter<Solver>(get_parameter(np, CGAL::internal_np::sparse_linear_solver));
+
+  std::vector<internal::Vector3> x;
+  Result result = internal::run_pipeline(mesh, system, options, solver, x);
+  if(x.size() == mesh.points.size()) {
+    using Point = typename boost::property_traits<VertexSphereMap>::value_type;
+    for(auto v : vertices(tm)) {
+      const internal::Vector3& p = x[static_cast<std::size_t>(get(vim, v))];
+      put(vsm, v, Point(p.x, p.y, p.z));
+    }
+  }
+  result.total_seconds = clock.seconds();
+  return result;
+}
+
+} // namespace Spherical_parameterization
+} // namespace CGAL
+
+#endif // CGAL_SPHERICAL_PARAMETERIZATION_SPHERICAL_PARAMETERIZE_H
