@@ -40,8 +40,10 @@ void print_usage(std::ostream& out)
          "                        (default: INPUT's name with _sphere.off)\n"
          "  -w, --weights W       uniform (default, Tutte), cotangent (conformal), mean_value\n"
          "  -t, --tolerance T     stop when the paper's residual Res < T (default 1e-6)\n"
+         "  -s, --solver S        stage 3: global (Newton on all vertices, default) or local (the paper's)\n"
          "      --max-seconds S   time budget of the iterations (default: none)\n"
          "      --seed N          METIS seed (default 0); equal seeds give identical output\n"
+         "      --no-backtracking let moves fold triangles (the paper's plain iterations; for experiments)\n"
          "  -q, --quiet           print nothing but errors\n"
          "  -h, --help            this text\n\n"
          "Exit status: 0 success (converged and certified bijective), 1 not converged or not bijective,\n"
@@ -110,7 +112,8 @@ int main(int argc, char** argv)
   SP::Weighting weighting = SP::Weighting::UNIFORM;
   double tolerance = 1e-6, max_seconds = -1.;
   int seed = 0;
-  bool quiet = false;
+  bool quiet = false, backtracking = true;
+  SP::Nonlinear_solver solver = SP::Nonlinear_solver::GLOBAL_NEWTON;
 
   for(int a = 1; a < argc; ++a) {
     const std::string arg = argv[a];
@@ -138,6 +141,13 @@ int main(int argc, char** argv)
     else if(arg == "--max-seconds") max_seconds = number("a number of seconds");
     else if(arg == "--seed") seed = static_cast<int>(number("an integer"));
     else if(arg == "-q" || arg == "--quiet") quiet = true;
+    else if(arg == "--no-backtracking") backtracking = false;
+    else if(arg == "-s" || arg == "--solver") {
+      const std::string name = value("global or local");
+      if(name == "global") solver = SP::Nonlinear_solver::GLOBAL_NEWTON;
+      else if(name == "local") solver = SP::Nonlinear_solver::LOCAL_NEWTON;
+      else { std::cerr << "error: unknown solver '" << name << "' (global, local)\n"; return EXIT_USAGE; }
+    }
     else if(!arg.empty() && arg[0] == '-') { std::cerr << "error: unknown option '" << arg << "' (see --help)\n"; return EXIT_USAGE; }
     else if(input.empty()) input = arg;
     else { std::cerr << "error: more than one input file ('" << input << "', '" << arg << "')\n"; return EXIT_USAGE; }
@@ -169,6 +179,8 @@ int main(int argc, char** argv)
       mesh, sphere_map,
       SP::parameters::combine(SP::parameters::weighting(weighting), SP::parameters::tolerance(tolerance),
                               SP::parameters::max_seconds(max_seconds), SP::parameters::metis_seed(seed),
+                              SP::parameters::preserve_bijectivity(backtracking),
+                              SP::parameters::nonlinear_solver(solver),
                               CGAL::parameters::verbose(!quiet)));
 
   if(!quiet) {
@@ -183,7 +195,8 @@ int main(int argc, char** argv)
               << ", " << result.initial_flipped_faces << " non-positive faces"
               << (result.uniform_initial_guess_fallback ? ", uniform-weight fallback" : "") << ")\n"
               << "gauss-seidel:           " << result.gauss_seidel.seconds << " s, " << result.gauss_seidel.iterations << " sweeps\n"
-              << "local newton:           " << result.newton.seconds << " s, " << result.newton.iterations << " sweeps\n"
+              << "newton:                 " << result.newton.seconds << " s, " << result.newton.iterations << " sweeps\n"
+              << "moves not taken:        " << result.rejected_moves << "\n"
               << "total:                  " << result.total_seconds << " s\n";
   }
   if(result.number_of_vertices == 0 || result.residual < 0.) {

@@ -1,6 +1,3 @@
-// Copyright (c) 2024
-// SPDX-License-Identifier: GPL-3.0-or-later
-//
 // Classical Ruge-Stueben algebraic multigrid as a CGAL sparse linear solver traits class.
 
 #ifndef CGAL_SPHERICAL_PARAMETERIZATION_AMG_SOLVER_TRAITS_H
@@ -16,12 +13,13 @@
 #include <Eigen/SparseCholesky>
 #include <Eigen/SparseLU>
 
+#include <algorithm>
 #include <chrono>
 #include <climits>
-#include <limits>
 #include <cmath>
 #include <cstdint>
 #include <cstring>
+#include <limits>
 #include <memory>
 #include <vector>
 
@@ -48,8 +46,9 @@ the same size, structure and values reuses it, so that solving for the u and the
 setup. Copies of a traits object share the setup and the statistics, as copies of `CGAL::Eigen_solver_traits`
 share their solver.
 
-Below `Parameters::direct_solver_threshold` unknowns the system is handed over to a direct solver
-(`Eigen::SimplicialLDLT` when symmetric, `Eigen::SparseLU` otherwise), which is faster on small systems.
+Below `Parameters::direct_solver_threshold` unknowns (`Parameters::direct_solver_threshold_non_symmetric` for
+non-symmetric systems) the system is handed over to a direct solver (`Eigen::SimplicialLDLT` when symmetric,
+`Eigen::SparseLU` otherwise), which is faster on small systems.
 
 All functions return `false`, and never loop forever, on a matrix or right-hand side with non-finite entries,
 on a zero diagonal entry, on a singular system, on a Krylov breakdown, or when the iteration cap is reached
@@ -107,10 +106,14 @@ public:
     int gmres_restart = 30;
     /// Relative tolerance of the symmetry test \f$ |a_{ij} - a_{ji}| \le \epsilon \max(|a_{ij}|, |a_{ji}|) \f$.
     double symmetry_tolerance = 1e-12;
-    /// Systems with fewer unknowns (after the elimination of the diagonal rows) are solved by a direct solver.
-    /// The default is where AMG and `Eigen::SimplicialLDLT` take the same time for two right-hand sides
-    /// on 2D meshes (measured by `benchmark_AMG_solver_traits`); 0 always uses AMG.
+    /// Symmetric systems with fewer unknowns (after the elimination of the diagonal rows) are solved by
+    /// `Eigen::SimplicialLDLT`; 0 always uses AMG. The default is about where both take the same time for two
+    /// right-hand sides on disk meshes (measured by `benchmark_AMG_solver_traits`: 20k on grids, 30k-110k on
+    /// meshes, the fill-in of the factor depending on the mesh).
     std::size_t direct_solver_threshold = 100000;
+    /// Non-symmetric systems with fewer unknowns are solved by `Eigen::SparseLU`, which is slower than
+    /// `Eigen::SimplicialLDLT`: AMG wins from about 5k unknowns on disk meshes. 0 always uses AMG.
+    std::size_t direct_solver_threshold_non_symmetric = 5000;
   };
 
   /// What the last setup and the last solve did.
@@ -139,9 +142,12 @@ public:
   /// \name Creation
   /// @{
 
+  /// Constructor with the default parameters.
+  AMG_solver_traits() : m_parameters(), m_state(std::make_shared<State>()) { }
+
   /// Constructor.
   /// \param parameters setup and solve parameters
-  explicit AMG_solver_traits(const Parameters& parameters = Parameters())
+  explicit AMG_solver_traits(const Parameters& parameters)
     : m_parameters(parameters), m_state(std::make_shared<State>())
   { }
 
@@ -207,7 +213,8 @@ private:
           && p.strength_threshold == q.strength_threshold && p.pre_smoothing_sweeps == q.pre_smoothing_sweeps
           && p.post_smoothing_sweeps == q.post_smoothing_sweeps && p.max_coarse_size == q.max_coarse_size
           && p.max_levels == q.max_levels && p.symmetry_tolerance == q.symmetry_tolerance
-          && p.direct_solver_threshold == q.direct_solver_threshold;
+          && p.direct_solver_threshold == q.direct_solver_threshold
+          && p.direct_solver_threshold_non_symmetric == q.direct_solver_threshold_non_symmetric;
     }
   };
 
@@ -223,7 +230,8 @@ private:
     std::vector<Index> eliminated_index;        // rows with only a diagonal entry
     std::vector<double> eliminated_diagonal;
     std::vector<double> row_sign;               // of each reduced row: -1 where the diagonal was negative
-    Compressed_row_matrix coupling;             // reduced rows x original columns of eliminated unknowns
+    Compressed_row_matrix coupling;             // reduced rows x eliminated unknowns
+    bool identity_reduction = false;            // nothing eliminated or negated: solve in place in X
 
     bool symmetric = false;
     bool direct = false;
@@ -327,7 +335,7 @@ private:
           has_off_diagonal[inner[k]] = 1;
       }
 
-    std::vector<Index> reduced_index(n, -1);
+    std::vector<Index> reduced_index(n, -1), eliminated_ordinal(n, -1);
     state.original_index.clear();
     state.eliminated_index.clear();
     state.eliminated_diagonal.clear();
@@ -344,11 +352,14 @@ private:
       }
       else
       {
+        eliminated_ordinal[i] = Index(state.eliminated_index.size());
         state.eliminated_index.push_back(i);
         state.eliminated_diagonal.push_back(diagonal[i]);
       }
     }
     const Index m = Index(state.original_index.size());
+    state.identity_reduction = (m == n)
+      && std::find(state.row_sign.begin(), state.row_sign.end(), -1.) == state.row_sign.end();
 
     reduced = Compressed_row_matrix();
     reduced.number_of_rows = reduced.number_of_columns = m;
@@ -356,7 +367,7 @@ private:
     Compressed_row_matrix& coupling = state.coupling;
     coupling = Compressed_row_matrix();
     coupling.number_of_rows = m;
-    coupling.number_of_columns = n;
+    coupling.number_of_columns = Index(state.eliminated_index.size());
     coupling.row_start.assign(std::size_t(m) + 1, 0);
     for(Index j = 0; j < n; ++j)
       for(Index k = outer[j]; k < outer[j + 1]; ++k)
@@ -396,7 +407,7 @@ private:
         else
         {
           const Index p = next_coupling[r]++;
-          coupling.column[p] = j;
+          coupling.column[p] = eliminated_ordinal[j];
           coupling.value[p] = signed_value;
         }
       }
@@ -426,7 +437,9 @@ private:
     statistics.number_of_eliminated_rows = state.eliminated_index.size();
     state.symmetric = internal::AMG::is_numerically_symmetric(reduced, m_parameters.symmetry_tolerance);
     statistics.symmetric = state.symmetric;
-    state.direct = std::size_t(reduced.number_of_rows) < m_parameters.direct_solver_threshold;
+    state.direct = std::size_t(reduced.number_of_rows)
+                 < (state.symmetric ? m_parameters.direct_solver_threshold
+                                    : m_parameters.direct_solver_threshold_non_symmetric);
     statistics.direct_solver = state.direct;
     state.krylov_method = m_parameters.krylov_method;
     if(state.krylov_method == Krylov_method::AUTOMATIC)
@@ -519,15 +532,21 @@ private:
       return true;
     }
 
-    // Known values of the eliminated rows, then the reduced right-hand side.
-    state.known_values.assign(n, 0.);
-    for(std::size_t e = 0; e < state.eliminated_index.size(); ++e)
-    {
-      const Index i = state.eliminated_index[e];
-      state.known_values[i] = B[i] / state.eliminated_diagonal[e];
-    }
+    // The residual of the eliminated rows is zero, so ||B - AX|| = ||b - A x|| on the reduced system.
+    const double target = m_parameters.tolerance * right_hand_side_norm;
     const Compressed_row_matrix& A = state.reduced_matrix();
     const Index m = A.number_of_rows;
+    if(state.identity_reduction && static_cast<const void*>(&B) != static_cast<const void*>(&X))
+    {
+      X.setZero();
+      return state.direct ? solve_direct(state, B.data(), X.data(), target, right_hand_side_norm)
+                          : solve_multigrid(state, B.data(), X.data(), target, right_hand_side_norm);
+    }
+
+    // Known values of the eliminated rows, then the reduced right-hand side.
+    state.known_values.resize(state.eliminated_index.size());
+    for(std::size_t e = 0; e < state.eliminated_index.size(); ++e)
+      state.known_values[e] = B[state.eliminated_index[e]] / state.eliminated_diagonal[e];
     state.reduced_right_hand_side.resize(m);
     state.reduced_solution.assign(m, 0.);
     for(Index r = 0; r < m; ++r)
@@ -538,25 +557,23 @@ private:
       state.reduced_right_hand_side[r] = value;
     }
 
-    // The residual of the eliminated rows is zero, so ||B - AX|| = ||b - A x|| on the reduced system.
-    const double target = m_parameters.tolerance * right_hand_side_norm;
     const double* b = state.reduced_right_hand_side.data();
     double* x = state.reduced_solution.data();
     bool converged = true;
     if(m > 0)
-      converged = state.direct ? solve_direct(state, target, right_hand_side_norm)
-                               : solve_multigrid(state, target, right_hand_side_norm, b, x);
+      converged = state.direct ? solve_direct(state, b, x, target, right_hand_side_norm)
+                               : solve_multigrid(state, b, x, target, right_hand_side_norm);
+    else
+      state.statistics.relative_residual = 0.;
 
-    for(Index i = 0; i < n; ++i)
-      X[i] = state.known_values[i];
+    for(std::size_t e = 0; e < state.eliminated_index.size(); ++e)
+      X[state.eliminated_index[e]] = state.known_values[e];
     for(Index r = 0; r < m; ++r)
       X[state.original_index[r]] = x[r];
-    if(m == 0)
-      statistics.relative_residual = 0.;
     return converged;
   }
 
-  bool solve_multigrid(State& state, double target, double reference_norm, const double* b, double* x) const
+  bool solve_multigrid(State& state, const double* b, double* x, double target, double reference_norm) const
   {
     auto preconditioner = [&state](const double* r, double* z) { state.hierarchy.apply_v_cycle(r, z); };
     const Compressed_row_matrix& A = state.hierarchy.fine_matrix();
@@ -582,15 +599,16 @@ private:
   }
 
   // Direct solve plus up to two steps of iterative refinement, so that the same tolerance holds on both paths.
-  bool solve_direct(State& state, double target, double reference_norm) const
+  bool solve_direct(State& state, const double* b_data, double* x_data, double target,
+                    double reference_norm) const
   {
     const Compressed_row_matrix& A = state.direct_matrix;
     const Index m = A.number_of_rows;
-    Eigen::Map<const Eigen::VectorXd> b(state.reduced_right_hand_side.data(), m);
-    Eigen::Map<Eigen::VectorXd> x(state.reduced_solution.data(), m);
+    Eigen::Map<const Eigen::VectorXd> b(b_data, m);
+    Eigen::Map<Eigen::VectorXd> x(x_data, m);
     state.correction.resize(m);
     Eigen::Map<Eigen::VectorXd> residual(state.correction.data(), m);
-    auto direct_solve = [&state](const Eigen::VectorXd& rhs) -> Eigen::VectorXd {
+    auto direct_solve = [&state](const auto& rhs) -> Eigen::VectorXd {
       return state.ldlt ? Eigen::VectorXd(state.ldlt->solve(rhs)) : Eigen::VectorXd(state.lu->solve(rhs));
     };
     x = direct_solve(b);

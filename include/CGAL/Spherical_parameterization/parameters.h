@@ -28,7 +28,8 @@ enum class Weighting {
 /// \ingroup PkgSphericalParameterizationRef
 /// The solver of stage 3 (after projected Gauss-Seidel).
 enum class Nonlinear_solver {
-  LOCAL_NEWTON  ///< The paper's local Newton iteration on (theta, phi) with line search (Section 3.3).
+  GLOBAL_NEWTON, ///< Newton on all vertices at once in tangent coordinates, bijectivity-preserving step control (default).
+  LOCAL_NEWTON   ///< The paper's local Newton iteration on (theta, phi) with line search (Section 3.3).
 };
 
 namespace internal_np {
@@ -79,7 +80,7 @@ CGAL_SPHERICAL_PARAMETERIZATION_NAMED_PARAMETER(max_newton_sweeps)
 CGAL_SPHERICAL_PARAMETERIZATION_NAMED_PARAMETER(max_seconds)
 /// Backtrack any vertex move that would make one of its spherical triangles non-positive (default `true`).
 CGAL_SPHERICAL_PARAMETERIZATION_NAMED_PARAMETER(preserve_bijectivity)
-/// Solver of stage 3 (`Nonlinear_solver`), default `Nonlinear_solver::LOCAL_NEWTON`.
+/// Solver of stage 3 (`Nonlinear_solver`), default `Nonlinear_solver::GLOBAL_NEWTON`.
 CGAL_SPHERICAL_PARAMETERIZATION_NAMED_PARAMETER(nonlinear_solver)
 /// Seed of METIS' randomized separator (default 0): the same seed gives bitwise identical output.
 CGAL_SPHERICAL_PARAMETERIZATION_NAMED_PARAMETER(metis_seed)

@@ -9,6 +9,7 @@
 #include <CGAL/Spherical_parameterization/internal/Mesh_arrays.h>
 #include <CGAL/Spherical_parameterization/internal/Sphere_system.h>
 #include <CGAL/Spherical_parameterization/internal/disk_embedding.h>
+#include <CGAL/Spherical_parameterization/internal/global_newton.h>
 #include <CGAL/Spherical_parameterization/internal/sphere_iterations.h>
 #include <CGAL/Spherical_parameterization/internal/sphere_orientation.h>
 #include <CGAL/Spherical_parameterization/internal/two_disk_partition.h>
@@ -26,6 +27,7 @@
 #include <algorithm>
 #include <cstdint>
 #include <iostream>
+#include <sstream>
 #include <string>
 #include <type_traits>
 #include <utility>
@@ -44,6 +46,7 @@ namespace internal {
 
 struct Pipeline_options {
   Weighting weighting = Weighting::UNIFORM;
+  Nonlinear_solver nonlinear_solver = Nonlinear_solver::GLOBAL_NEWTON;
   int metis_seed = 0;
   bool verbose = false;
   Iteration_options iterations;
@@ -130,7 +133,10 @@ Result run_pipeline(const Mesh_arrays& mesh, Sphere_system& system, const Pipeli
 
   stage = Stopwatch();
   Iteration_report newton;
-  if(!gauss_seidel.converged && !gauss_seidel.out_of_time) newton = local_newton(state, options.iterations, iterations_clock);
+  if(!gauss_seidel.converged && !gauss_seidel.out_of_time)
+    newton = options.nonlinear_solver == Nonlinear_solver::LOCAL_NEWTON
+                 ? local_newton(state, options.iterations, iterations_clock)
+                 : global_newton(state, options.iterations, iterations_clock);
   else newton.residual = gauss_seidel.residual;
   result.newton.iterations = newton.sweeps;
   result.newton.residual = newton.residual;
@@ -151,8 +157,15 @@ Result run_pipeline(const Mesh_arrays& mesh, Sphere_system& system, const Pipeli
   const bool converged = result.residual < options.iterations.tolerance;
   result.status = !converged ? Error_code::NOT_CONVERGED : (certificate.bijective ? Error_code::OK : Error_code::NOT_BIJECTIVE);
   result.message = get_error_message(result.status);
-  if(result.status != Error_code::OK)
-    result.message += " (Res " + std::to_string(result.residual) + ", " + std::to_string(result.flipped_faces) + " flipped faces)";
+  if(result.status != Error_code::OK) {
+    std::ostringstream details;
+    details << " (Res " << result.residual << ", " << result.flipped_faces << " flipped faces";
+    if(newton.stagnated)
+      details << "; the residual stagnated" << (system.symmetric ? "" : ": with non-symmetric weights the balance equations "
+                                                                        "generally have no exact solution, only a least-squares one");
+    details << ")";
+    result.message += details.str();
+  }
   result.total_seconds = total.seconds();
   return result;
 }
@@ -191,6 +204,8 @@ Result run_pipeline(const Mesh_arrays& mesh, Sphere_system& system, const Pipeli
 ///   \cgalParamNBegin{max_seconds} \cgalParamDescription{time budget of stages 2 and 3} \cgalParamDefault{unlimited} \cgalParamNEnd
 ///   \cgalParamNBegin{preserve_bijectivity} \cgalParamDescription{backtrack moves that would fold a triangle}
 ///     \cgalParamDefault{`true`} \cgalParamNEnd
+///   \cgalParamNBegin{nonlinear_solver} \cgalParamDescription{the solver of stage 3 (`Nonlinear_solver`)}
+///     \cgalParamDefault{`Nonlinear_solver::GLOBAL_NEWTON`} \cgalParamNEnd
 ///   \cgalParamNBegin{metis_seed} \cgalParamDescription{seed of METIS} \cgalParamDefault{0} \cgalParamNEnd
 ///   \cgalParamNBegin{sparse_linear_solver} \cgalParamDescription{a model of `SparseLinearAlgebraTraits_d` for the disk stage,
 ///     e.g. `AMG_solver_traits`} \cgalParamDefault{`Default_disk_solver_traits`} \cgalParamNEnd
@@ -228,6 +243,7 @@ Result spherical_parameterize(const TriangleMesh& tm, VertexSphereMap vsm,
   internal::Pipeline_options options;
   options.weighting = choose_parameter(get_parameter(np, internal_np::weighting),
                                        has_user_weights ? Weighting::USER_MAP : Weighting::UNIFORM);
+  options.nonlinear_solver = choose_parameter(get_parameter(np, internal_np::nonlinear_solver), Nonlinear_solver::GLOBAL_NEWTON);
   options.metis_seed = choose_parameter(get_parameter(np, internal_np::metis_seed), 0);
   options.verbose = choose_parameter(get_parameter(np, CGAL::internal_np::verbose), false);
   options.iterations.tolerance = choose_parameter(get_parameter(np, internal_np::tolerance), 1e-6);

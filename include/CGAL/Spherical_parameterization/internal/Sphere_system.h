@@ -30,6 +30,8 @@ struct Sphere_system {
   std::vector<int> neighbors;              // counter-clockwise around the vertex, starting at the smallest index
   std::vector<std::size_t> reverse;        // position of the entry (j, i) for the entry (i, j)
   std::vector<double> weights;             // normalized: each row sums to one
+  std::vector<double> row_sums;             // raw weight of (i, j) = weights[k] * row_sums[i]
+  bool symmetric = true;                   // raw weights satisfy w_ij = w_ji
   std::vector<int> ring_faces;             // for the entry (i, j = ring[k]): the face (i, ring[k], ring[k+1])
   std::vector<std::array<int, 3>> triangles;
 
@@ -116,6 +118,7 @@ inline Error_code assign_weights(Sphere_system& system, const Mesh_arrays& mesh,
 {
   const std::size_t n = system.number_of_vertices;
   system.weights.assign(system.neighbors.size(), 1.);
+  system.row_sums.assign(n, 1.);
   for(std::size_t i = 0; i < n; ++i) {
     const std::size_t begin = system.offsets[i], end = system.offsets[i + 1], d = end - begin;
     double sum = 0.;
@@ -137,7 +140,15 @@ inline Error_code assign_weights(Sphere_system& system, const Mesh_arrays& mesh,
       return Error_code::INVALID_WEIGHTS;
     }
     for(std::size_t k = begin; k < end; ++k) system.weights[k] /= sum;
+    system.row_sums[i] = sum;
   }
+  system.symmetric = true;
+  for(std::size_t i = 0; i < n && system.symmetric; ++i)
+    for(std::size_t k = system.offsets[i]; k < system.offsets[i + 1]; ++k) {
+      const std::size_t j = static_cast<std::size_t>(system.neighbors[k]);
+      const double wij = system.weights[k] * system.row_sums[i], wji = system.weights[system.reverse[k]] * system.row_sums[j];
+      if(std::abs(wij - wji) > 1e-12 * (std::abs(wij) + std::abs(wji))) { system.symmetric = false; break; }
+    }
   return Error_code::OK;
 }
 

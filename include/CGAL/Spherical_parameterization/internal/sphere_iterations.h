@@ -37,6 +37,7 @@ struct Iteration_report {
   double residual = -1.;
   bool converged = false;
   bool out_of_time = false;
+  bool stagnated = false;       // the residual stopped decreasing before the tolerance
   std::size_t rejected_moves = 0;
 };
 
@@ -70,6 +71,31 @@ public:
       total += squared_length(cross(x_[i], s_[i]));
     }
     return std::sqrt(total) / static_cast<double>(std::max<std::size_t>(n, 1));
+  }
+
+  // Replaces all positions at once (a global step), keeping the face flags and sums consistent.
+  void assign(const std::vector<Vector3>& y)
+  {
+    x_ = y;
+    invalid_faces_ = 0;
+    for(std::size_t f = 0; f < system_.triangles.size(); ++f) {
+      const auto& t = system_.triangles[f];
+      face_positive_[f] = is_positive(x_[static_cast<std::size_t>(t[0])], x_[static_cast<std::size_t>(t[1])], x_[static_cast<std::size_t>(t[2])]);
+      invalid_faces_ += !face_positive_[f];
+    }
+    refresh_sums();
+  }
+
+  // True when no positive face of the current positions is non-positive at y.
+  bool keeps_positive_faces(const std::vector<Vector3>& y) const
+  {
+    for(std::size_t f = 0; f < system_.triangles.size(); ++f) {
+      if(!face_positive_[f]) continue;
+      const auto& t = system_.triangles[f];
+      if(!is_positive(y[static_cast<std::size_t>(t[0])], y[static_cast<std::size_t>(t[1])], y[static_cast<std::size_t>(t[2])]))
+        return false;
+    }
+    return true;
   }
 
   // A move of vertex i to y may not turn a positive incident face non-positive.

@@ -74,7 +74,7 @@ inline std::vector<idx_t> metis_vertex_separator(const Sphere_system& system, in
 class Disk_grower {
 public:
   Disk_grower(const std::vector<std::array<int, 3>>& triangles, const std::vector<int>& opposite, std::size_t nv)
-    : triangles_(triangles), opposite_(opposite), in_disk_(triangles.size(), 0), faces_at_vertex_(nv, 0) {}
+    : triangles_(&triangles), opposite_(&opposite), in_disk_(triangles.size(), 0), faces_at_vertex_(nv, 0) {}
 
   std::size_t size() const { return size_; }
   const std::vector<char>& in_disk() const { return in_disk_; }
@@ -83,7 +83,7 @@ public:
   int shared_edges(std::size_t f) const
   {
     int shared = 0;
-    for(int k = 0; k < 3; ++k) shared += in_disk_[static_cast<std::size_t>(opposite_[3 * f + static_cast<std::size_t>(k)])];
+    for(int k = 0; k < 3; ++k) shared += in_disk_[static_cast<std::size_t>((*opposite_)[3 * f + static_cast<std::size_t>(k)])];
     return shared;
   }
 
@@ -96,8 +96,8 @@ public:
     if(shared == 2) return true;
     if(shared != 1) return false;
     for(int k = 0; k < 3; ++k)
-      if(in_disk_[static_cast<std::size_t>(opposite_[3 * f + static_cast<std::size_t>(k)])])
-        return faces_at_vertex_[static_cast<std::size_t>(triangles_[f][(k + 2) % 3])] == 0;
+      if(in_disk_[static_cast<std::size_t>((*opposite_)[3 * f + static_cast<std::size_t>(k)])])
+        return faces_at_vertex_[static_cast<std::size_t>((*triangles_)[f][(k + 2) % 3])] == 0;
     return false;
   }
 
@@ -108,12 +108,12 @@ private:
   void set(std::size_t f, char value)
   {
     in_disk_[f] = value;
-    for(int v : triangles_[f]) faces_at_vertex_[static_cast<std::size_t>(v)] += value ? 1 : -1;
+    for(int v : (*triangles_)[f]) faces_at_vertex_[static_cast<std::size_t>(v)] += value ? 1 : -1;
     size_ = value ? size_ + 1 : size_ - 1;
   }
 
-  const std::vector<std::array<int, 3>>& triangles_;
-  const std::vector<int>& opposite_;
+  const std::vector<std::array<int, 3>>* triangles_;
+  const std::vector<int>* opposite_;
   std::vector<char> in_disk_;
   std::vector<int> faces_at_vertex_;
   std::size_t size_ = 0;
@@ -147,6 +147,45 @@ inline void remove_ears(Disk_grower& disk, const std::vector<int>& opposite, std
   }
 }
 
+// Breadth-first growth of a disk from `seed` over the allowed faces, up to `target` faces, then ear removal.
+inline Disk_grower grow_disk(const std::vector<std::array<int, 3>>& triangles, const std::vector<int>& opposite,
+                             std::size_t nv, const std::vector<char>& allowed, std::size_t seed, std::size_t target)
+{
+  Disk_grower disk(triangles, opposite, nv);
+  std::deque<std::size_t> queue{seed};
+  while(!queue.empty() && disk.size() < target) {
+    const std::size_t f = queue.front();
+    queue.pop_front();
+    if(!allowed[f] || !disk.can_add(f)) continue;
+    // Faces that share two edges with the disk are added at once: the disk stays compact, without ears.
+    std::vector<std::size_t> added{f};
+    disk.add(f);
+    while(!added.empty() && disk.size() < target) {
+      const std::size_t g = added.back();
+      added.pop_back();
+      for(int k = 0; k < 3; ++k) {
+        const std::size_t h = static_cast<std::size_t>(opposite[3 * g + static_cast<std::size_t>(k)]);
+        queue.push_back(h);
+        if(allowed[h] && !disk.contains(h) && disk.shared_edges(h) == 2 && disk.size() + 1 < triangles.size() && disk.size() < target) {
+          disk.add(h);
+          added.push_back(h);
+        }
+      }
+    }
+  }
+  remove_ears(disk, opposite, triangles.size());
+  return disk;
+}
+
+// A face with two or three edges on the loop has all its vertices on the unit circle: flat on the equator.
+inline bool has_flat_face(const Disk_grower& disk, const std::vector<int>& opposite, std::size_t nf)
+{
+  if(disk.size() == 0 || disk.size() >= nf) return true;
+  for(std::size_t f = 0; f < nf; ++f)
+    if(boundary_edges(disk, opposite, f) >= 2) return true;
+  return false;
+}
+
 inline Two_disk_partition split_into_two_disks(const Sphere_system& system, int metis_seed)
 {
   Two_disk_partition partition;
@@ -178,18 +217,16 @@ inline Two_disk_partition split_into_two_disks(const Sphere_system& system, int 
     else std::fill(allowed.begin(), allowed.end(), 1);
   }
 
-  Disk_grower disk(triangles, opposite, nv);
-  std::deque<std::size_t> queue{seed};
-  while(!queue.empty() && disk.size() < target) {
-    const std::size_t f = queue.front();
-    queue.pop_front();
-    if(!allowed[f] || !disk.can_add(f)) continue;
-    disk.add(f);
-    for(int k = 0; k < 3; ++k) queue.push_back(static_cast<std::size_t>(opposite[3 * f + static_cast<std::size_t>(k)]));
+  Disk_grower disk = grow_disk(triangles, opposite, nv, allowed, seed, target);
+  if(has_flat_face(disk, opposite, nf)) {
+    // METIS' side was too small or thin to avoid a face with all vertices on the loop (tiny meshes): grow half
+    // of the faces from successive seeds instead, keeping the first split without such a face.
+    std::fill(allowed.begin(), allowed.end(), 1);
+    for(std::size_t start = 0; start < std::min<std::size_t>(nf, 16); ++start) {
+      disk = grow_disk(triangles, opposite, nv, allowed, start, nf / 2);
+      if(!has_flat_face(disk, opposite, nf)) break;
+    }
   }
-  remove_ears(disk, opposite, nf);
-  if(disk.size() == 0 || disk.size() >= nf) return partition;
-
   // The loop: boundary edges of A, oriented as A's faces, so A lies on their left.
   std::vector<int> next(nv, -1);
   std::size_t loop_edges = 0;

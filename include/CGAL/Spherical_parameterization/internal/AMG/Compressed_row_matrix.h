@@ -1,6 +1,3 @@
-// Copyright (c) 2024
-// SPDX-License-Identifier: GPL-3.0-or-later
-//
 // Compressed sparse row matrix and the few kernels the algebraic multigrid needs.
 // Flat arrays and 32-bit indices: the kernels are memory bound, so smaller is faster.
 
@@ -111,76 +108,110 @@ inline Compressed_row_matrix transpose(const Compressed_row_matrix& A)
   return T;
 }
 
-// C = A B (Gustavson's row-by-row product with a dense accumulator).
-// Two passes (structure, then values) so that no array is ever reallocated.
-inline Compressed_row_matrix multiply(const Compressed_row_matrix& A, const Compressed_row_matrix& B)
+// y += P^T x, without forming P^T (restriction in the V-cycle).
+inline void multiply_transpose_add(const Compressed_row_matrix& P, const double* x, double* y)
 {
-  Compressed_row_matrix C;
-  C.number_of_rows = A.number_of_rows;
-  C.number_of_columns = B.number_of_columns;
-  C.row_start.assign(std::size_t(C.number_of_rows) + 1, 0);
+  const Index* row_start = P.row_start.data();
+  const Index* column = P.column.data();
+  const double* value = P.value.data();
+  for(Index i = 0; i < P.number_of_rows; ++i)
+  {
+    const double xi = x[i];
+    for(Index k = row_start[i]; k < row_start[i + 1]; ++k)
+      y[column[k]] += value[k] * xi;
+  }
+}
 
-  std::vector<Index> last_row_seen(B.number_of_columns, -1);
+// Sorts the entries of each row by column (rows are short: insertion sort, in place, no allocation).
+inline void sort_rows(Compressed_row_matrix& A)
+{
   for(Index i = 0; i < A.number_of_rows; ++i)
   {
-    Index count = 0;
-    for(Index ka = A.row_start[i]; ka < A.row_start[i + 1]; ++ka)
+    const Index begin = A.row_start[i], end = A.row_start[i + 1];
+    for(Index p = begin + 1; p < end; ++p)
     {
-      const Index j = A.column[ka];
-      for(Index kb = B.row_start[j]; kb < B.row_start[j + 1]; ++kb)
+      const Index c = A.column[p];
+      const double v = A.value[p];
+      Index q = p;
+      for(; q > begin && A.column[q - 1] > c; --q)
       {
-        const Index c = B.column[kb];
-        if(last_row_seen[c] != i)
+        A.column[q] = A.column[q - 1];
+        A.value[q] = A.value[q - 1];
+      }
+      A.column[q] = c;
+      A.value[q] = v;
+    }
+  }
+}
+
+// Galerkin coarse operator P^T A P, one coarse row at a time: the intermediate product A P is never stored,
+// which bounds the setup's peak memory, for about the same number of operations as (P^T (A P)).
+// A first pass counts the entries so that no array is reallocated.
+inline Compressed_row_matrix galerkin_product(const Compressed_row_matrix& A, const Compressed_row_matrix& P)
+{
+  const Compressed_row_matrix Pt = transpose(P);
+  const Index nc = P.number_of_columns;
+  Compressed_row_matrix C;
+  C.number_of_rows = C.number_of_columns = nc;
+  C.row_start.assign(std::size_t(nc) + 1, 0);
+
+  std::vector<Index> marker(nc, -1);
+  for(Index I = 0; I < nc; ++I)
+  {
+    Index count = 0;
+    for(Index kt = Pt.row_start[I]; kt < Pt.row_start[I + 1]; ++kt)
+    {
+      const Index i = Pt.column[kt];
+      for(Index ka = A.row_start[i]; ka < A.row_start[i + 1]; ++ka)
+      {
+        const Index j = A.column[ka];
+        for(Index kp = P.row_start[j]; kp < P.row_start[j + 1]; ++kp)
         {
-          last_row_seen[c] = i;
-          ++count;
+          const Index J = P.column[kp];
+          if(marker[J] != I)
+          {
+            marker[J] = I;
+            ++count;
+          }
         }
       }
     }
-    C.row_start[i + 1] = C.row_start[i] + count;
+    C.row_start[I + 1] = C.row_start[I] + count;
   }
 
   C.column.resize(C.row_start.back());
   C.value.resize(C.row_start.back());
-  std::vector<Index> position_in_row(B.number_of_columns, -1);
-  std::vector<std::pair<Index, double>> row;
-  for(Index i = 0; i < A.number_of_rows; ++i)
+  std::vector<Index>& position = marker; // reused: positions of earlier rows are below the current begin
+  std::fill(position.begin(), position.end(), -1);
+  for(Index I = 0; I < nc; ++I)
   {
-    const Index begin = C.row_start[i];
+    const Index begin = C.row_start[I];
     Index end = begin;
-    for(Index ka = A.row_start[i]; ka < A.row_start[i + 1]; ++ka)
+    for(Index kt = Pt.row_start[I]; kt < Pt.row_start[I + 1]; ++kt)
     {
-      const Index j = A.column[ka];
-      const double a = A.value[ka];
-      for(Index kb = B.row_start[j]; kb < B.row_start[j + 1]; ++kb)
+      const Index i = Pt.column[kt];
+      const double r = Pt.value[kt];
+      for(Index ka = A.row_start[i]; ka < A.row_start[i + 1]; ++ka)
       {
-        const Index c = B.column[kb];
-        Index p = position_in_row[c];
-        if(p < begin)
+        const Index j = A.column[ka];
+        const double ra = r * A.value[ka];
+        for(Index kp = P.row_start[j]; kp < P.row_start[j + 1]; ++kp)
         {
-          p = end++;
-          position_in_row[c] = p;
-          C.column[p] = c;
-          C.value[p] = 0.;
+          const Index J = P.column[kp];
+          Index p = position[J];
+          if(p < begin)
+          {
+            p = end++;
+            position[J] = p;
+            C.column[p] = J;
+            C.value[p] = 0.;
+          }
+          C.value[p] += ra * P.value[kp];
         }
-        C.value[p] += a * B.value[kb];
-      }
-    }
-    // Sorted columns keep the smoother's memory accesses monotone.
-    if(!std::is_sorted(C.column.begin() + begin, C.column.begin() + end))
-    {
-      row.clear();
-      for(Index p = begin; p < end; ++p)
-        row.emplace_back(C.column[p], C.value[p]);
-      std::sort(row.begin(), row.end(),
-                [](const auto& l, const auto& r) { return l.first < r.first; });
-      for(Index p = begin; p < end; ++p)
-      {
-        C.column[p] = row[p - begin].first;
-        C.value[p] = row[p - begin].second;
       }
     }
   }
+  sort_rows(C);
   return C;
 }
 
@@ -192,44 +223,30 @@ inline bool all_values_finite(const Compressed_row_matrix& A)
   return true;
 }
 
-// Same structure and |a_ij - a_ji| <= relative_tolerance * max(|a_ij|, |a_ji|) everywhere.
+// |a_ij - a_ji| <= relative_tolerance * max(|a_ij|, |a_ji|) for all i, j (a missing entry is zero).
+// Binary searches in the sorted rows instead of a transposed copy: no extra memory.
 inline bool is_numerically_symmetric(const Compressed_row_matrix& A, double relative_tolerance)
 {
   if(A.number_of_rows != A.number_of_columns)
     return false;
-  const Compressed_row_matrix T = transpose(A);
-  if(T.row_start != A.row_start || T.column != A.column)
-  {
-    // Explicit zeros may break structural symmetry: fall back to a value check through a search.
-    for(Index i = 0; i < A.number_of_rows; ++i)
-      for(Index k = A.row_start[i]; k < A.row_start[i + 1]; ++k)
-      {
-        const Index j = A.column[k];
-        const auto first = T.column.begin() + T.row_start[i];
-        const auto last = T.column.begin() + T.row_start[i + 1];
-        const auto it = std::lower_bound(first, last, j);
-        const double transposed = (it != last && *it == j) ? T.value[it - T.column.begin()] : 0.;
-        if(std::abs(A.value[k] - transposed)
-           > relative_tolerance * std::max(std::abs(A.value[k]), std::abs(transposed)))
-          return false;
-      }
-    // Entries of A^T absent from A.
-    for(Index i = 0; i < T.number_of_rows; ++i)
-      for(Index k = T.row_start[i]; k < T.row_start[i + 1]; ++k)
-      {
-        const Index j = T.column[k];
-        const auto first = A.column.begin() + A.row_start[i];
-        const auto last = A.column.begin() + A.row_start[i + 1];
-        const auto it = std::lower_bound(first, last, j);
-        if((it == last || *it != j) && T.value[k] != 0.)
-          return false;
-      }
-    return true;
-  }
-  for(std::size_t k = 0; k < A.value.size(); ++k)
-    if(std::abs(A.value[k] - T.value[k])
-       > relative_tolerance * std::max(std::abs(A.value[k]), std::abs(T.value[k])))
-      return false;
+  auto find = [&A](Index i, Index j) -> double {
+    const auto first = A.column.begin() + A.row_start[i];
+    const auto last = A.column.begin() + A.row_start[i + 1];
+    const auto it = std::lower_bound(first, last, j);
+    return (it != last && *it == j) ? A.value[it - A.column.begin()] : 0.;
+  };
+  for(Index i = 0; i < A.number_of_rows; ++i)
+    for(Index k = A.row_start[i]; k < A.row_start[i + 1]; ++k)
+    {
+      const Index j = A.column[k];
+      if(j == i)
+        continue;
+      // Each pair is checked from both rows, which also catches an entry missing on one side.
+      const double transposed = find(j, i);
+      if(std::abs(A.value[k] - transposed)
+         > relative_tolerance * std::max(std::abs(A.value[k]), std::abs(transposed)))
+        return false;
+    }
   return true;
 }
 

@@ -1,9 +1,6 @@
-// Copyright (c) 2024
-// SPDX-License-Identifier: GPL-3.0-or-later
-//
 // Preconditioned Krylov methods over raw arrays: conjugate gradient (symmetric), BiCGStab and restarted GMRES
-// (non-symmetric), right-preconditioned so that the stopping test is on the true residual b - A x.
-// Work vectors live in Krylov_workspace and are reused between solves.
+// (non-symmetric, right-preconditioned). All stop on the unpreconditioned residual ||b - A x||, recomputed
+// explicitly before convergence is reported. Work vectors live in Krylov_workspace and are reused between solves.
 
 #ifndef CGAL_SPHERICAL_PARAMETERIZATION_INTERNAL_AMG_KRYLOV_SOLVERS_H
 #define CGAL_SPHERICAL_PARAMETERIZATION_INTERNAL_AMG_KRYLOV_SOLVERS_H
@@ -58,9 +55,10 @@ Krylov_result conjugate_gradient(const Compressed_row_matrix& A, const double* b
 {
   const Index n = A.number_of_rows;
   double* r = workspace.vector(0, n);
-  double* z = workspace.vector(1, n);
-  double* p = workspace.vector(2, n);
-  double* q = workspace.vector(3, n);
+  double* p = workspace.vector(1, n);
+  // z = M^{-1} r and q = A p are never needed at the same time: one vector for both.
+  double* z = workspace.vector(2, n);
+  double* q = z;
   Krylov_result result;
 
   bool restart = true;

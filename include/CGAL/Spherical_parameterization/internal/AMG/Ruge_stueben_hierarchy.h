@@ -1,6 +1,3 @@
-// Copyright (c) 2024
-// SPDX-License-Identifier: GPL-3.0-or-later
-//
 // Classical (Ruge-Stueben) algebraic multigrid: strength of connection, C/F splitting,
 // classical interpolation, Galerkin coarse operators, and the V-cycle with Gauss-Seidel smoothing.
 // References: J. W. Ruge, K. Stueben, "Algebraic multigrid", in Multigrid Methods, SIAM 1987;
@@ -67,12 +64,8 @@ inline Compressed_row_pattern transpose(const Compressed_row_pattern& S)
 // |a_ij| >= threshold * max_k |a_ik| in rows that also have positive off-diagonals.
 inline Compressed_row_pattern strength_of_connection(const Compressed_row_matrix& A, double threshold)
 {
-  Compressed_row_pattern S;
-  S.number_of_rows = A.number_of_rows;
-  S.row_start.assign(std::size_t(A.number_of_rows) + 1, 0);
-  S.column.reserve(A.number_of_nonzeros());
-  for(Index i = 0; i < A.number_of_rows; ++i)
-  {
+  // Calls on_strong(j) for each j strongly influencing i.
+  auto for_each_strong = [&A, threshold](Index i, auto&& on_strong) {
     bool has_positive_off_diagonal = false;
     double largest_negative = 0., largest_absolute = 0.;
     for(Index k = A.row_start[i]; k < A.row_start[i + 1]; ++k)
@@ -89,18 +82,33 @@ inline Compressed_row_pattern strength_of_connection(const Compressed_row_matrix
       const double bound = threshold * largest_absolute;
       for(Index k = A.row_start[i]; k < A.row_start[i + 1]; ++k)
         if(A.column[k] != i && std::abs(A.value[k]) >= bound && A.value[k] != 0.)
-          S.column.push_back(A.column[k]);
+          on_strong(A.column[k]);
     }
     else if(largest_negative > 0.)
     {
       const double bound = threshold * largest_negative;
       for(Index k = A.row_start[i]; k < A.row_start[i + 1]; ++k)
         if(A.column[k] != i && -A.value[k] >= bound)
-          S.column.push_back(A.column[k]);
+          on_strong(A.column[k]);
     }
-    S.row_start[i + 1] = Index(S.column.size());
+  };
+
+  // Count, then fill: the pattern is allocated once at its exact size.
+  Compressed_row_pattern S;
+  S.number_of_rows = A.number_of_rows;
+  S.row_start.assign(std::size_t(A.number_of_rows) + 1, 0);
+  for(Index i = 0; i < A.number_of_rows; ++i)
+  {
+    Index count = 0;
+    for_each_strong(i, [&count](Index) { ++count; });
+    S.row_start[i + 1] = S.row_start[i] + count;
   }
-  S.column.shrink_to_fit();
+  S.column.resize(S.row_start.back());
+  for(Index i = 0; i < A.number_of_rows; ++i)
+  {
+    Index position = S.row_start[i];
+    for_each_strong(i, [&](Index j) { S.column[position++] = j; });
+  }
   return S;
 }
 
@@ -353,11 +361,9 @@ class Ruge_stueben_hierarchy
 public:
   struct Level
   {
-    Compressed_row_matrix A;
-    Compressed_row_matrix P; // interpolation from the next coarser level
-    Compressed_row_matrix R; // restriction = P^T
-    std::vector<double> inverse_diagonal;
-    std::vector<double> solution, right_hand_side, residual;
+    Compressed_row_matrix A; // once built, the diagonal entry comes first in each row, the others sorted
+    Compressed_row_matrix P; // interpolation from the next coarser level; restriction is P^T
+    std::vector<double> solution, right_hand_side; // of the coarse levels only
   };
 
   // Returns false when a diagonal entry is not positive or when the coarsest operator is singular.
@@ -391,14 +397,8 @@ public:
           break;
         P = classical_interpolation(fine.A, S, type, coarse_index, number_of_coarse_points);
       }
-      Compressed_row_matrix R = transpose(P);
-      Compressed_row_matrix coarse_matrix;
-      {
-        const Compressed_row_matrix AP = multiply(fine.A, P);
-        coarse_matrix = multiply(R, AP);
-      }
+      Compressed_row_matrix coarse_matrix = galerkin_product(fine.A, P);
       fine.P = std::move(P);
-      fine.R = std::move(R);
       m_levels.emplace_back();
       m_levels.back().A = std::move(coarse_matrix);
     }
@@ -407,18 +407,18 @@ public:
     {
       Level& level = m_levels[l];
       const Index n = level.A.number_of_rows;
-      level.inverse_diagonal.assign(n, 0.);
-      for(Index i = 0; i < n; ++i)
-        for(Index k = level.A.row_start[i]; k < level.A.row_start[i + 1]; ++k)
-          if(level.A.column[k] == i)
-            level.inverse_diagonal[i] += level.A.value[k];
+      // The smoother finds the diagonal first in its row: no separate array of diagonals.
       for(Index i = 0; i < n; ++i)
       {
-        if(!(level.inverse_diagonal[i] > 0.) || !std::isfinite(level.inverse_diagonal[i]))
+        const Index first = level.A.row_start[i];
+        Index k = first;
+        while(k < level.A.row_start[i + 1] && level.A.column[k] != i)
+          ++k;
+        if(k == level.A.row_start[i + 1] || !(level.A.value[k] > 0.) || !std::isfinite(level.A.value[k]))
           return false;
-        level.inverse_diagonal[i] = 1. / level.inverse_diagonal[i];
+        std::swap(level.A.column[k], level.A.column[first]);
+        std::swap(level.A.value[k], level.A.value[first]);
       }
-      level.residual.assign(n, 0.);
       if(l > 0)
       {
         level.solution.assign(n, 0.);
@@ -444,9 +444,8 @@ public:
   {
     std::size_t bytes = 0;
     for(const Level& l : m_levels)
-      bytes += l.A.memory_bytes() + l.P.memory_bytes() + l.R.memory_bytes()
-             + sizeof(double) * (l.inverse_diagonal.capacity() + l.solution.capacity()
-                                 + l.right_hand_side.capacity() + l.residual.capacity());
+      bytes += l.A.memory_bytes() + l.P.memory_bytes()
+             + sizeof(double) * (l.solution.capacity() + l.right_hand_side.capacity());
     return bytes;
   }
 
@@ -493,13 +492,12 @@ private:
     const Index* row_start = A.row_start.data();
     const Index* column = A.column.data();
     const double* value = A.value.data();
-    const double* inverse_diagonal = level.inverse_diagonal.data();
     for(Index i = 0; i < A.number_of_rows; ++i)
     {
       double defect = b[i];
       for(Index k = row_start[i]; k < row_start[i + 1]; ++k)
         defect -= value[k] * x[column[k]];
-      x[i] += defect * inverse_diagonal[i];
+      x[i] += defect / value[row_start[i]];
     }
   }
 
@@ -509,13 +507,28 @@ private:
     const Index* row_start = A.row_start.data();
     const Index* column = A.column.data();
     const double* value = A.value.data();
-    const double* inverse_diagonal = level.inverse_diagonal.data();
     for(Index i = A.number_of_rows - 1; i >= 0; --i)
     {
       double defect = b[i];
       for(Index k = row_start[i]; k < row_start[i + 1]; ++k)
         defect -= value[k] * x[column[k]];
-      x[i] += defect * inverse_diagonal[i];
+      x[i] += defect / value[row_start[i]];
+    }
+  }
+
+  // coarse_b = P^T (b - A x), without storing the residual.
+  static void restrict_residual(const Level& level, const double* b, const double* x, double* coarse_b)
+  {
+    const Compressed_row_matrix& A = level.A;
+    const Compressed_row_matrix& P = level.P;
+    std::fill(coarse_b, coarse_b + P.number_of_columns, 0.);
+    for(Index i = 0; i < A.number_of_rows; ++i)
+    {
+      double r = b[i];
+      for(Index k = A.row_start[i]; k < A.row_start[i + 1]; ++k)
+        r -= A.value[k] * x[A.column[k]];
+      for(Index k = P.row_start[i]; k < P.row_start[i + 1]; ++k)
+        coarse_b[P.column[k]] += P.value[k] * r;
     }
   }
 
@@ -531,8 +544,7 @@ private:
     Level& coarse = m_levels[l + 1];
     for(int s = 0; s < m_parameters.pre_smoothing_sweeps; ++s)
       gauss_seidel_forward(level, b, x);
-    residual(level.A, x, b, level.residual.data());
-    multiply(level.R, level.residual.data(), coarse.right_hand_side.data());
+    restrict_residual(level, b, x, coarse.right_hand_side.data());
     std::fill(coarse.solution.begin(), coarse.solution.end(), 0.);
     v_cycle(l + 1, coarse.right_hand_side.data(), coarse.solution.data());
     multiply_add(level.P, coarse.solution.data(), x);

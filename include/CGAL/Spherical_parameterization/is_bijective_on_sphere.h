@@ -1,0 +1,162 @@
+// The certificate of a spherical map, and its distortion, for any map a user has (not only ours).
+
+#ifndef CGAL_SPHERICAL_PARAMETERIZATION_IS_BIJECTIVE_ON_SPHERE_H
+#define CGAL_SPHERICAL_PARAMETERIZATION_IS_BIJECTIVE_ON_SPHERE_H
+
+#include <CGAL/Spherical_parameterization/internal/Mesh_arrays.h>
+#include <CGAL/Spherical_parameterization/internal/sphere_orientation.h>
+
+#include <CGAL/Named_function_parameters.h>
+#include <CGAL/boost/graph/named_params_helper.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstddef>
+#include <vector>
+
+namespace CGAL {
+namespace Spherical_parameterization {
+
+/// \ingroup PkgSphericalParameterizationRef
+/// What `certify_sphere_map()` found.
+struct Sphere_map_certificate {
+  std::size_t number_of_faces = 0;
+  std::size_t flipped_faces = 0;     ///< Faces whose spherical triangle is not positively oriented (exact predicate).
+  double total_signed_area = 0.;     ///< Sum of the signed areas of the spherical triangles (4 pi for a bijection).
+  bool bijective = false;            ///< No flipped face and total area 4 pi.
+};
+
+namespace internal {
+
+template <typename TriangleMesh, typename VertexSphereMap, typename NamedParameters>
+std::vector<Vector3> read_sphere_map(const TriangleMesh& tm, VertexSphereMap vsm, const NamedParameters& np)
+{
+  auto vim = CGAL::get_initialized_vertex_index_map(tm, np);
+  std::vector<Vector3> x(static_cast<std::size_t>(num_vertices(tm)));
+  for(auto v : vertices(tm)) {
+    const auto& p = get(vsm, v);
+    x[static_cast<std::size_t>(get(vim, v))] = Vector3(CGAL::to_double(p.x()), CGAL::to_double(p.y()), CGAL::to_double(p.z()));
+  }
+  return x;
+}
+
+template <typename TriangleMesh, typename NamedParameters>
+Mesh_arrays read_connectivity(const TriangleMesh& tm, const NamedParameters& np)
+{
+  using CGAL::parameters::choose_parameter;
+  using CGAL::parameters::get_parameter;
+  auto vpm = choose_parameter(get_parameter(np, CGAL::internal_np::vertex_point), get_const_property_map(CGAL::vertex_point, tm));
+  return read_face_graph(tm, vpm, CGAL::get_initialized_vertex_index_map(tm, np));
+}
+
+} // namespace internal
+
+/// \ingroup PkgSphericalParameterizationRef
+/// Certifies a map `vsm` of the vertices of the closed triangle mesh `tm` to points on (or radially projected
+/// onto) the unit sphere: every spherical triangle must be positively oriented, `CGAL::orientation(ORIGIN, p, q, r)
+/// == POSITIVE` decided exactly, and the signed spherical areas must add up to 4 pi (with every triangle positive
+/// the total is 4 pi times the degree of the map, so this excludes multiple coverings).
+/// \cgalNamedParamsBegin
+///   \cgalParamNBegin{vertex_index_map} \cgalParamDescription{indices of the vertices}
+///     \cgalParamDefault{an automatically indexed internal map} \cgalParamNEnd
+/// \cgalNamedParamsEnd
+template <typename TriangleMesh, typename VertexSphereMap, typename NamedParameters = CGAL::parameters::Default_named_parameters>
+Sphere_map_certificate certify_sphere_map(const TriangleMesh& tm, VertexSphereMap vsm,
+                                          const NamedParameters& np = CGAL::parameters::default_values())
+{
+  const internal::Mesh_arrays mesh = internal::read_connectivity(tm, np);
+  std::vector<internal::Vector3> x = internal::read_sphere_map(tm, vsm, np);
+  Sphere_map_certificate certificate;
+  certificate.number_of_faces = mesh.polygons.size();
+  if(mesh.triangles.size() != mesh.polygons.size()) { certificate.flipped_faces = mesh.polygons.size(); return certificate; }
+  // Orientation does not depend on the radius; the areas are those of the radially projected triangles.
+  std::vector<internal::Vector3> unit(x.size());
+  for(std::size_t i = 0; i < x.size(); ++i) {
+    const double r = internal::length(x[i]);
+    unit[i] = r > 0. ? x[i] * (1. / r) : x[i];
+  }
+  const internal::Sphere_certificate raw = internal::certify(mesh.triangles, unit);
+  // The exact test runs on the user's coordinates, not on the normalized ones.
+  std::size_t flipped = 0;
+  for(const auto& t : mesh.triangles) {
+    const internal::Vector3& a = x[static_cast<std::size_t>(t[0])];
+    const internal::Vector3& b = x[static_cast<std::size_t>(t[1])];
+    const internal::Vector3& c = x[static_cast<std::size_t>(t[2])];
+    if(!internal::is_finite(a) || !internal::is_finite(b) || !internal::is_finite(c) || !internal::is_positive(a, b, c)) ++flipped;
+  }
+  certificate.flipped_faces = flipped;
+  certificate.total_signed_area = raw.total_signed_area;
+  certificate.bijective = flipped == 0 && std::abs(raw.total_signed_area - 4. * CGAL_PI) < CGAL_PI;
+  return certificate;
+}
+
+/// \ingroup PkgSphericalParameterizationRef
+/// `true` iff `certify_sphere_map(tm, vsm, np).bijective`.
+template <typename TriangleMesh, typename VertexSphereMap, typename NamedParameters = CGAL::parameters::Default_named_parameters>
+bool is_bijective_on_sphere(const TriangleMesh& tm, VertexSphereMap vsm, const NamedParameters& np = CGAL::parameters::default_values())
+{
+  return certify_sphere_map(tm, vsm, np).bijective;
+}
+
+/// \ingroup PkgSphericalParameterizationRef
+/// Distortion of a spherical map, in the spirit of CGAL SMP's `measure_distortion()`. Angles are those of the
+/// straight (chordal) triangles between the mapped points; areas are compared after normalizing both totals.
+struct Spherical_distortion {
+  double mean_angle_error_degrees = 0.;  ///< Mean of |angle on the sphere - angle on the mesh| over all corners.
+  double max_angle_error_degrees = 0.;   ///< Largest such difference.
+  double log_area_ratio_stddev = 0.;     ///< Standard deviation of log(relative sphere area / relative mesh area).
+};
+
+/// \ingroup PkgSphericalParameterizationRef
+/// Measures the angle and area distortion of the map `vsm` of `tm` (named parameters: `vertex_point_map`, `vertex_index_map`).
+template <typename TriangleMesh, typename VertexSphereMap, typename NamedParameters = CGAL::parameters::Default_named_parameters>
+Spherical_distortion measure_spherical_distortion(const TriangleMesh& tm, VertexSphereMap vsm,
+                                                  const NamedParameters& np = CGAL::parameters::default_values())
+{
+  using internal::Vector3;
+  const internal::Mesh_arrays mesh = internal::read_connectivity(tm, np);
+  const std::vector<Vector3> x = internal::read_sphere_map(tm, vsm, np);
+  auto angle = [](const Vector3& a, const Vector3& b) { return std::atan2(internal::length(internal::cross(a, b)), internal::dot(a, b)); };
+  auto area = [](const Vector3& a, const Vector3& b, const Vector3& c) { return 0.5 * internal::length(internal::cross(b - a, c - a)); };
+
+  Spherical_distortion distortion;
+  double mesh_total = 0., sphere_total = 0.;
+  std::vector<double> mesh_areas, sphere_areas;
+  std::size_t corners = 0;
+  for(const auto& t : mesh.triangles) {
+    const Vector3 p[3] = {mesh.points[std::size_t(t[0])], mesh.points[std::size_t(t[1])], mesh.points[std::size_t(t[2])]};
+    const Vector3 q[3] = {x[std::size_t(t[0])], x[std::size_t(t[1])], x[std::size_t(t[2])]};
+    for(int k = 0; k < 3; ++k) {
+      const double a_mesh = angle(p[(k + 1) % 3] - p[k], p[(k + 2) % 3] - p[k]);
+      const double a_sphere = angle(q[(k + 1) % 3] - q[k], q[(k + 2) % 3] - q[k]);
+      const double error = std::abs(a_sphere - a_mesh) * 180. / CGAL_PI;
+      distortion.mean_angle_error_degrees += error;
+      distortion.max_angle_error_degrees = (std::max)(distortion.max_angle_error_degrees, error);
+      ++corners;
+    }
+    mesh_areas.push_back(area(p[0], p[1], p[2]));
+    sphere_areas.push_back(area(q[0], q[1], q[2]));
+    mesh_total += mesh_areas.back();
+    sphere_total += sphere_areas.back();
+  }
+  if(corners > 0) distortion.mean_angle_error_degrees /= static_cast<double>(corners);
+  double sum = 0., sum2 = 0.;
+  std::size_t counted = 0;
+  for(std::size_t f = 0; f < mesh_areas.size(); ++f) {
+    if(!(mesh_areas[f] > 0.) || !(sphere_areas[f] > 0.)) continue;
+    const double l = std::log((sphere_areas[f] / sphere_total) / (mesh_areas[f] / mesh_total));
+    sum += l;
+    sum2 += l * l;
+    ++counted;
+  }
+  if(counted > 0) {
+    const double mean = sum / static_cast<double>(counted);
+    distortion.log_area_ratio_stddev = std::sqrt((std::max)(0., sum2 / static_cast<double>(counted) - mean * mean));
+  }
+  return distortion;
+}
+
+} // namespace Spherical_parameterization
+} // namespace CGAL
+
+#endif // CGAL_SPHERICAL_PARAMETERIZATION_IS_BIJECTIVE_ON_SPHERE_H

@@ -1,0 +1,9 @@
+#!/usr/bin/env bash
+# The main job: set up, build the command-line tool, map the bundled bunny onto the sphere and print the figures.
+set -euo pipefail
+cd "$(dirname "$0")/.."
+scripts/setup.sh spherical_parameterize
+build="${BUILD_DIR:-build}"
+input="${1:-examples/Spherical_parameterization/data/bunny.off}"
+output="${2:-$build/bunny_sphere.off}"
+"$build/examples/Spherical_parameterization/spherical_parameterize" "$input" -o "$output"

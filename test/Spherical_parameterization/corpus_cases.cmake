@@ -1,0 +1,33 @@
+# One ctest case per mesh and weighting. Cases of the list below that take minutes carry the label "slow",
+# which scripts/run_tests.sh (and so CI) leaves out; run them with `ctest -L slow`.
+file(GLOB SP_SHARED_CORPUS "${SPHERICAL_PARAMETERIZATION_SHARED_MESHES}/*.off")
+set(SP_CGAL_CORPUS triceratops cow homer bear man armadillo bunny00)
+set(SP_SLOW_CASES "")
+
+file(STRINGS ${CMAKE_CURRENT_SOURCE_DIR}/known_failures.txt SP_KNOWN_FAILURES REGEX "^[^#].*")
+
+function(sp_add_corpus_case mesh_path weights)
+  get_filename_component(name ${mesh_path} NAME_WE)
+  set(arguments ${mesh_path} ${weights})
+  foreach(line ${SP_KNOWN_FAILURES})
+    string(REGEX MATCH "^([^ ]+) ([^ ]+) (.*)$" match "${line}")
+    if(match AND CMAKE_MATCH_1 STREQUAL "${name}.off" AND CMAKE_MATCH_2 STREQUAL weights)
+      list(APPEND arguments --known-failure "${CMAKE_MATCH_3}")
+    endif()
+  endforeach()
+  add_test(NAME corpus.${weights}.${name} COMMAND test_mesh_corpus ${arguments})
+  set(labels corpus)
+  if("${name}.${weights}" IN_LIST SP_SLOW_CASES)
+    list(APPEND labels slow)
+  endif()
+  set_tests_properties(corpus.${weights}.${name} PROPERTIES LABELS "${labels}" TIMEOUT 900)
+endfunction()
+
+foreach(weights uniform mean_value cotangent)
+  foreach(mesh ${SP_SHARED_CORPUS})
+    sp_add_corpus_case(${mesh} ${weights})
+  endforeach()
+  foreach(mesh ${SP_CGAL_CORPUS})
+    sp_add_corpus_case(${SPHERICAL_PARAMETERIZATION_CGAL_DATA}/${mesh}.off ${weights})
+  endforeach()
+endforeach()

@@ -1,0 +1,568 @@
+// Unit tests: each stage alone, the certificate, the input checks and the public API.
+
+#include <CGAL/Spherical_parameterization/check_input.h>
+#include <CGAL/Spherical_parameterization/is_bijective_on_sphere.h>
+#include <CGAL/Spherical_parameterization/spherical_parameterize.h>
+
+#include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
+#include <CGAL/IO/polygon_soup_io.h>
+#include <CGAL/Polygon_mesh_processing/IO/polygon_mesh_io.h>
+#include <CGAL/Polyhedron_3.h>
+#include <CGAL/Surface_mesh.h>
+#include <CGAL/boost/graph/generators.h>
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <map>
+#include <set>
+#include <string>
+#include <vector>
+
+namespace SP = CGAL::Spherical_parameterization;
+namespace SPI = CGAL::Spherical_parameterization::internal;
+using Kernel = CGAL::Epick;
+using Point = Kernel::Point_3;
+using Mesh = CGAL::Surface_mesh<Point>;
+using Polyhedron = CGAL::Polyhedron_3<Kernel>;
+
+namespace {
+
+const std::string shared_meshes = SP_SHARED_MESHES;
+const std::string cgal_data = SP_CGAL_DATA;
+
+struct Arrays {
+  std::vector<Point> points;
+  std::vector<std::vector<std::size_t>> faces;
+};
+
+Arrays tetrahedron()
+{
+  return {{Point(1, 1, 1), Point(1, -1, -1), Point(-1, 1, -1), Point(-1, -1, 1)}, {{0, 1, 2}, {0, 2, 3}, {0, 3, 1}, {1, 3, 2}}};
+}
+
+Arrays octahedron()
+{
+  return {{Point(1, 0, 0), Point(-1, 0, 0), Point(0, 1, 0), Point(0, -1, 0), Point(0, 0, 1), Point(0, 0, -1)},
+          {{0, 2, 4}, {2, 1, 4}, {1, 3, 4}, {3, 0, 4}, {2, 0, 5}, {1, 2, 5}, {3, 1, 5}, {0, 3, 5}}};
+}
+
+Arrays cube()
+{
+  Arrays a;
+  for(int i = 0; i < 8; ++i) a.points.emplace_back(i & 1 ? 1 : -1, i & 2 ? 1 : -1, i & 4 ? 1 : -1);
+  const std::size_t quads[6][4] = {{0, 2, 3, 1}, {4, 5, 7, 6}, {0, 1, 5, 4}, {2, 6, 7, 3}, {0, 4, 6, 2}, {1, 3, 7, 5}};
+  for(const auto& q : quads) {
+    a.faces.push_back({q[0], q[1], q[2]});
+    a.faces.push_back({q[0], q[2], q[3]});
+  }
+  return a;
+}
+
+Arrays icosahedron()
+{
+  Mesh m;
+  CGAL::make_icosahedron(m, Point(0, 0, 0), 1.);
+  Arrays a;
+  for(auto v : m.vertices()) a.points.push_back(m.point(v));
+  for(auto f : m.faces()) {
+    std::vector<std::size_t> face;
+    for(auto v : vertices_around_face(m.halfedge(f), m)) face.push_back(std::size_t(v));
+    a.faces.push_back(face);
+  }
+  return a;
+}
+
+// A torus as a (u, v) grid, genus 1.
+Arrays torus(int nu = 8, int nv = 6)
+{
+  Arrays a;
+  for(int i = 0; i < nu; ++i)
+    for(int j = 0; j < nv; ++j) {
+      const double u = 2 * CGAL_PI * i / nu, v = 2 * CGAL_PI * j / nv;
+      a.points.emplace_back((2 + std::cos(v)) * std::cos(u), (2 + std::cos(v)) * std::sin(u), std::sin(v));
+    }
+  auto id = [&](int i, int j) { return std::size_t(((i + nu) % nu) * nv + (j + nv) % nv); };
+  for(int i = 0; i < nu; ++i)
+    for(int j = 0; j < nv; ++j) {
+      a.faces.push_back({id(i, j), id(i + 1, j), id(i + 1, j + 1)});
+      a.faces.push_back({id(i, j), id(i + 1, j + 1), id(i, j + 1)});
+    }
+  return a;
+}
+
+Mesh to_mesh(const Arrays& a)
+{
+  Mesh m;
+  for(const Point& p : a.points) m.add_vertex(p);
+  for(const auto& f : a.faces) {
+    std::vector<Mesh::Vertex_index> vs;
+    for(std::size_t i : f) vs.push_back(Mesh::Vertex_index(static_cast<Mesh::size_type>(i)));
+    m.add_face(vs);
+  }
+  return m;
+}
+
+Mesh read_mesh(const std::string& path)
+{
+  Mesh m;
+  EXPECT_TRUE(CGAL::IO::read_polygon_mesh(path, m)) << path;
+  return m;
+}
+
+SPI::Mesh_arrays arrays_of(const Mesh& m)
+{
+  return SPI::read_face_graph(m, get(CGAL::vertex_point, m), get(CGAL::vertex_index, m));
+}
+
+SPI::Sphere_system system_of(const SPI::Mesh_arrays& arrays, SP::Weighting weighting = SP::Weighting::UNIFORM)
+{
+  SPI::Sphere_system system = SPI::make_connectivity(arrays);
+  std::string message;
+  EXPECT_EQ(SPI::assign_weights(system, arrays, weighting, {}, message), SP::Error_code::OK) << message;
+  return system;
+}
+
+std::vector<SPI::Vector3> initial_sphere_of(const SPI::Mesh_arrays& arrays, const SPI::Sphere_system& system,
+                                            SPI::Two_disk_partition* partition_out = nullptr)
+{
+  const SPI::Two_disk_partition partition = SPI::split_into_two_disks(system, 0);
+  EXPECT_TRUE(partition.valid);
+  std::vector<SPI::Vector3> x;
+  EXPECT_TRUE(SPI::initial_sphere(arrays, system, partition, SP::Weighting::UNIFORM, SP::Default_disk_solver_traits(), x));
+  if(partition_out) *partition_out = partition;
+  return x;
+}
+
+// Both sides of the partition are topological disks sharing exactly the loop, and no face has two loop edges.
+void expect_two_disks(const SPI::Sphere_system& system, const SPI::Two_disk_partition& partition, const std::string& name)
+{
+  ASSERT_TRUE(partition.valid) << name;
+  const auto& triangles = system.triangles;
+  const std::vector<int> opposite = SPI::face_adjacency(triangles);
+  std::set<std::pair<int, int>> loop_edges;
+  const std::size_t m = partition.loop.size();
+  ASSERT_GE(m, 3u) << name;
+  std::set<int> loop_vertices(partition.loop.begin(), partition.loop.end());
+  EXPECT_EQ(loop_vertices.size(), m) << name << ": the loop repeats a vertex";
+  for(std::size_t k = 0; k < m; ++k) {
+    const int a = partition.loop[k], b = partition.loop[(k + 1) % m];
+    loop_edges.insert({std::min(a, b), std::max(a, b)});
+  }
+  for(char side : {char(1), char(0)}) {
+    std::set<int> vertices;
+    std::set<std::pair<int, int>> edges, cut;
+    std::size_t faces = 0;
+    for(std::size_t f = 0; f < triangles.size(); ++f) {
+      if(partition.face_in_disk_a[f] != side) continue;
+      ++faces;
+      int edges_on_loop = 0;
+      for(int k = 0; k < 3; ++k) {
+        const int a = triangles[f][k], b = triangles[f][(k + 1) % 3];
+        vertices.insert(a);
+        edges.insert({std::min(a, b), std::max(a, b)});
+        if(partition.face_in_disk_a[std::size_t(opposite[3 * f + std::size_t(k)])] != side) {
+          cut.insert({std::min(a, b), std::max(a, b)});
+          ++edges_on_loop;
+        }
+      }
+      EXPECT_LE(edges_on_loop, 1) << name << ": face " << f << " has " << edges_on_loop << " edges on the loop";
+    }
+    ASSERT_GT(faces, 0u) << name;
+    const long euler = long(vertices.size()) - long(edges.size()) + long(faces);
+    EXPECT_EQ(euler, 1) << name << ": side " << int(side) << " is not a disk";
+    EXPECT_EQ(cut, loop_edges) << name << ": the boundary of side " << int(side) << " is not the loop";
+    // Face-connected.
+    std::vector<char> seen(triangles.size(), 0);
+    std::vector<std::size_t> stack;
+    for(std::size_t f = 0; f < triangles.size() && stack.empty(); ++f)
+      if(partition.face_in_disk_a[f] == side) { stack.push_back(f); seen[f] = 1; }
+    std::size_t reached = 0;
+    while(!stack.empty()) {
+      const std::size_t f = stack.back();
+      stack.pop_back();
+      ++reached;
+      for(int k = 0; k < 3; ++k) {
+        const std::size_t g = std::size_t(opposite[3 * f + std::size_t(k)]);
+        if(!seen[g] && partition.face_in_disk_a[g] == side) { seen[g] = 1; stack.push_back(g); }
+      }
+    }
+    EXPECT_EQ(reached, faces) << name << ": side " << int(side) << " is not connected";
+  }
+}
+
+} // namespace
+
+// ---------------------------------------------------------------------------------------------------------------
+// Input checks
+
+TEST(InputCheck, AcceptsClosedGenusZeroSolids)
+{
+  for(const Arrays& a : {tetrahedron(), octahedron(), cube(), icosahedron()})
+    EXPECT_EQ(SP::check_polygon_soup(a.points, a.faces).status, SP::Error_code::OK);
+  Mesh m = to_mesh(cube());
+  EXPECT_TRUE(SP::check_input(m));
+}
+
+TEST(InputCheck, NamesEachDefect)
+{
+  Arrays open = octahedron();
+  open.faces.pop_back();
+  EXPECT_EQ(SP::check_polygon_soup(open.points, open.faces).status, SP::Error_code::HAS_BORDER);
+  EXPECT_NE(SP::check_polygon_soup(open.points, open.faces).message.find("1 boundary loop"), std::string::npos);
+
+  const Arrays ring = torus();
+  const SP::Input_check genus = SP::check_polygon_soup(ring.points, ring.faces);
+  EXPECT_EQ(genus.status, SP::Error_code::GENUS_NOT_ZERO);
+  EXPECT_NE(genus.message.find("genus 1"), std::string::npos) << genus.message;
+
+  Arrays two = tetrahedron();
+  for(const Point& p : tetrahedron().points) two.points.push_back(p + Kernel::Vector_3(5, 0, 0));
+  for(auto f : tetrahedron().faces) { for(auto& i : f) i += 4; two.faces.push_back(f); }
+  EXPECT_EQ(SP::check_polygon_soup(two.points, two.faces).status, SP::Error_code::MULTIPLE_COMPONENTS);
+
+  // Two tetrahedra sharing one vertex: closed, edge-manifold, but pinched.
+  Arrays pinched = tetrahedron();
+  pinched.points.push_back(Point(3, 3, 3));
+  pinched.points.push_back(Point(3, 1, 1));
+  pinched.points.push_back(Point(1, 3, 1));
+  pinched.faces.push_back({0, 5, 4});
+  pinched.faces.push_back({0, 6, 5});
+  pinched.faces.push_back({0, 4, 6});
+  pinched.faces.push_back({4, 5, 6});
+  EXPECT_EQ(SP::check_polygon_soup(pinched.points, pinched.faces).status, SP::Error_code::NON_MANIFOLD_VERTEX);
+
+  Arrays fin = tetrahedron();  // a third face on edge (0, 1)
+  fin.points.push_back(Point(3, 0, 0));
+  fin.faces.push_back({0, 1, 4});
+  EXPECT_EQ(SP::check_polygon_soup(fin.points, fin.faces).status, SP::Error_code::NON_MANIFOLD_EDGE);
+
+  Arrays flipped = octahedron();
+  std::swap(flipped.faces[0][0], flipped.faces[0][1]);
+  EXPECT_EQ(SP::check_polygon_soup(flipped.points, flipped.faces).status, SP::Error_code::INCONSISTENT_ORIENTATION);
+
+  Arrays quads = cube();
+  quads.faces = {{0, 2, 3, 1}, {4, 5, 7, 6}, {0, 1, 5, 4}, {2, 6, 7, 3}, {0, 4, 6, 2}, {1, 3, 7, 5}};
+  EXPECT_EQ(SP::check_polygon_soup(quads.points, quads.faces).status, SP::Error_code::NOT_TRIANGLE_MESH);
+
+  Arrays repeated = tetrahedron();
+  repeated.faces[0] = {0, 1, 1};
+  EXPECT_EQ(SP::check_polygon_soup(repeated.points, repeated.faces).status, SP::Error_code::DEGENERATE_FACE);
+
+  Arrays nan = tetrahedron();
+  nan.points[2] = Point(std::nan(""), 0, 0);
+  EXPECT_EQ(SP::check_polygon_soup(nan.points, nan.faces).status, SP::Error_code::NON_FINITE_COORDINATES);
+
+  Arrays isolated = tetrahedron();
+  isolated.points.push_back(Point(9, 9, 9));
+  EXPECT_EQ(SP::check_polygon_soup(isolated.points, isolated.faces).status, SP::Error_code::ISOLATED_VERTEX);
+
+  EXPECT_EQ(SP::check_polygon_soup(std::vector<Point>(), std::vector<std::vector<std::size_t>>()).status, SP::Error_code::EMPTY_MESH);
+}
+
+TEST(InputCheck, SharedBadInputFiles)
+{
+  const std::map<std::string, SP::Error_code> expected = {
+      {"degenerate_repeated_index_thingi43149_welded.off", SP::Error_code::DEGENERATE_FACE},
+      {"degenerate_zero_area_face_openscad1580.off", SP::Error_code::OK},
+      {"genus1_rocker-arm.off", SP::Error_code::GENUS_NOT_ZERO},
+      {"genus23_cad_tray_bottom.off", SP::Error_code::GENUS_NOT_ZERO},
+      {"genus2_skull_lowres.off", SP::Error_code::GENUS_NOT_ZERO},
+      {"misoriented_faces_lhpialparc.off", SP::Error_code::INCONSISTENT_ORIENTATION},
+      {"nonmanifold_edges_simplify_brain.off", SP::Error_code::NON_MANIFOLD_EDGE},
+      {"nonmanifold_vertex_cow_pinched.off", SP::Error_code::NON_MANIFOLD_VERTEX},
+      {"nontriangle_sword_quads.off", SP::Error_code::NOT_TRIANGLE_MESH},
+      {"open_5holes_stanford-bunny.off", SP::Error_code::HAS_BORDER},
+      {"triangle_soup_thingi43149_unwelded.off", SP::Error_code::HAS_BORDER},
+      {"two_components_mni_both_hemispheres.off", SP::Error_code::MULTIPLE_COMPONENTS}};
+  for(const auto& [file, code] : expected) {
+    std::vector<Point> points;
+    std::vector<std::vector<std::size_t>> faces;
+    ASSERT_TRUE(CGAL::IO::read_polygon_soup(shared_meshes + "/bad_input/" + file, points, faces)) << file;
+    const SP::Input_check check = SP::check_polygon_soup(points, faces);
+    EXPECT_EQ(check.status, code) << file << ": " << check.message;
+  }
+  for(const std::string file : {"empty.off", "garbage.off"}) {
+    std::vector<Point> points;
+    std::vector<std::vector<std::size_t>> faces;
+    const bool read = CGAL::IO::read_polygon_soup(shared_meshes + "/bad_input/" + file, points, faces, CGAL::parameters::verbose(false));
+    EXPECT_TRUE(!read || points.empty() || faces.empty()) << file;
+  }
+}
+
+// ---------------------------------------------------------------------------------------------------------------
+// Stage 1: separator -> two disks -> Moebius -> stereographic projection
+
+TEST(TwoDisks, TinyMeshes)
+{
+  const std::map<std::string, Arrays> tiny = {{"tetrahedron", tetrahedron()}, {"octahedron", octahedron()},
+                                              {"cube", cube()}, {"icosahedron", icosahedron()}};
+  for(const auto& [name, a] : tiny) {
+    const Mesh m = to_mesh(a);
+    const SPI::Mesh_arrays arrays = arrays_of(m);
+    const SPI::Sphere_system system = system_of(arrays);
+    const SPI::Two_disk_partition partition = SPI::split_into_two_disks(system, 0);
+    ASSERT_TRUE(partition.valid) << name;
+    // The tetrahedron cannot avoid a face with all its vertices on the loop; the others must be proper disks.
+    if(name == "tetrahedron") continue;
+    expect_two_disks(system, partition, name);
+  }
+}
+
+TEST(TwoDisks, RealMeshesAndSeeds)
+{
+  const std::vector<std::string> files = {shared_meshes + "/trimesh_fuze.off", shared_meshes + "/npm_bunny.off",
+                                          shared_meshes + "/oscad_pcbvicebar.off", shared_meshes + "/oded_wingnut.off",
+                                          shared_meshes + "/c3d_cheburashka.off", shared_meshes + "/oded_springer.off",
+                                          cgal_data + "/triceratops.off", cgal_data + "/man.off"};
+  for(const std::string& file : files) {
+    const SPI::Mesh_arrays arrays = arrays_of(read_mesh(file));
+    const SPI::Sphere_system system = system_of(arrays);
+    for(int seed : {0, 1, 7}) {
+      const SPI::Two_disk_partition partition = SPI::split_into_two_disks(system, seed);
+      expect_two_disks(system, partition, file + " seed " + std::to_string(seed));
+      std::size_t in_a = 0;
+      for(char c : partition.face_in_disk_a) in_a += c;
+      // Balanced enough to be useful: neither side is a sliver.
+      EXPECT_GT(in_a, system.triangles.size() / 10) << file;
+      EXPECT_LT(in_a, system.triangles.size() * 9 / 10) << file;
+    }
+  }
+}
+
+TEST(MoebiusStereographic, CircleToEquatorHalvesToHemispheres)
+{
+  for(int k = 0; k < 16; ++k) {
+    const double t = 2 * CGAL_PI * k / 16;
+    for(bool inverted : {false, true}) {
+      const SPI::Vector3 p = SPI::inverse_stereographic(std::cos(t), std::sin(t), inverted);
+      EXPECT_NEAR(p.z, 0., 1e-15);
+      EXPECT_NEAR(SPI::length(p), 1., 1e-15);
+      // Points inside the unit disk: the upper hemisphere, or the lower one after inversion.
+      const SPI::Vector3 q = SPI::inverse_stereographic(0.5 * std::cos(t), 0.5 * std::sin(t), inverted);
+      EXPECT_NEAR(SPI::length(q), 1., 1e-15);
+      EXPECT_EQ(q.z > 0, !inverted);
+    }
+  }
+  // The inverted half equals the projection of 1 / conj(z), computed without dividing by |z|.
+  const double u = 0.3, v = -0.2, r2 = u * u + v * v;
+  const SPI::Vector3 direct = SPI::inverse_stereographic(u / r2, v / r2, false);
+  const SPI::Vector3 closed = SPI::inverse_stereographic(u, v, true);
+  EXPECT_NEAR(SPI::length(direct - closed), 0., 1e-14);
+  EXPECT_EQ(SPI::inverse_stereographic(0, 0, true).z, -1.);
+
+  // On a real mesh: disk A's interior in the north, disk B's in the south, the loop on the equator.
+  const SPI::Mesh_arrays arrays = arrays_of(read_mesh(cgal_data + "/triceratops.off"));
+  const SPI::Sphere_system system = system_of(arrays);
+  SPI::Two_disk_partition partition;
+  const std::vector<SPI::Vector3> x = initial_sphere_of(arrays, system, &partition);
+  std::vector<int> side(x.size(), 0);
+  for(std::size_t f = 0; f < system.triangles.size(); ++f)
+    for(int v : system.triangles[f]) side[std::size_t(v)] |= partition.face_in_disk_a[f] ? 1 : 2;
+  for(std::size_t i = 0; i < x.size(); ++i) {
+    EXPECT_NEAR(SPI::length(x[i]), 1., 1e-14);
+    if(side[i] == 3) EXPECT_NEAR(x[i].z, 0., 1e-15);
+    else if(side[i] == 1) EXPECT_GT(x[i].z, 0.);
+    else EXPECT_LT(x[i].z, 0.);
+  }
+  EXPECT_EQ(SPI::certify(system.triangles, x).flipped_faces, 0u);
+}
+
+// ---------------------------------------------------------------------------------------------------------------
+// Stages 2 and 3
+
+TEST(GaussSeidel, StopsWhenTheResidualRises)
+{
+  for(const std::string file : {cgal_data + "/triceratops.off", shared_meshes + "/trimesh_fuze.off"}) {
+    const SPI::Mesh_arrays arrays = arrays_of(read_mesh(file));
+    const SPI::Sphere_system system = system_of(arrays);
+    std::vector<SPI::Vector3> x = initial_sphere_of(arrays, system);
+    SPI::Sphere_state state(system, x);
+    std::vector<double> history;
+    SPI::Iteration_options options;
+    options.tolerance = 0.;  // never converged: only the rule may stop it
+    options.max_gauss_seidel_sweeps = 100000;
+    options.progress = [&](const char*, std::size_t, double residual, std::size_t) { history.push_back(residual); };
+    const SPI::Iteration_report report = SPI::projected_gauss_seidel(state, options, SPI::Stopwatch());
+    ASSERT_GE(history.size(), 2u) << file;
+    EXPECT_LT(report.sweeps, options.max_gauss_seidel_sweeps) << file;
+    for(std::size_t k = 1; k + 1 < history.size(); ++k) EXPECT_LT(history[k], history[k - 1]) << file << " sweep " << k;
+    EXPECT_GE(history.back(), history[history.size() - 2]) << file;
+    // The iterate kept is the last one before the rise.
+    EXPECT_DOUBLE_EQ(report.residual, history[history.size() - 2]);
+    EXPECT_NEAR(SPI::compute_residuals(system, x).paper, report.residual, 1e-15);
+  }
+}
+
+TEST(LocalNewton, EachStepLowersTheEnergy)
+{
+  const SPI::Mesh_arrays arrays = arrays_of(read_mesh(cgal_data + "/triceratops.off"));
+  const SPI::Sphere_system system = system_of(arrays);
+  std::vector<SPI::Vector3> x = initial_sphere_of(arrays, system);
+  SPI::Sphere_state state(system, x);
+  auto energy = [&] {
+    double e = 0.;
+    for(std::size_t i = 0; i < x.size(); ++i) e += SPI::squared_length(SPI::cross(x[i], SPI::weighted_neighbor_sum(system, x, i)));
+    return e;
+  };
+  std::size_t moved = 0;
+  for(std::size_t i = 0; i < x.size(); ++i) {
+    const double before_ring = SPI::one_ring_energy(state, x, i, x[i]);
+    const double before = energy();
+    const SPI::Vector3 old = x[i];
+    if(SPI::local_newton_step(state, i, true)) {
+      ++moved;
+      EXPECT_LT(SPI::one_ring_energy(state, x, i, x[i]), before_ring) << "vertex " << i;
+      // The one-ring energy holds every term that depends on x_i, so the total drops by the same amount.
+      EXPECT_NEAR(before - energy(), before_ring - SPI::one_ring_energy(state, x, i, x[i]), 1e-12 * before + 1e-20);
+    } else {
+      EXPECT_TRUE(old == x[i]);
+    }
+    if(i > 300) break;
+  }
+  EXPECT_GT(moved, 100u);
+  EXPECT_EQ(state.invalid_faces(), 0u);
+}
+
+TEST(GlobalNewton, LowersTheResidualAndKeepsEveryTrianglePositive)
+{
+  const SPI::Mesh_arrays arrays = arrays_of(read_mesh(shared_meshes + "/trimesh_fuze.off"));
+  const SPI::Sphere_system system = system_of(arrays);
+  std::vector<SPI::Vector3> x = initial_sphere_of(arrays, system);
+  SPI::Sphere_state state(system, x);
+  SPI::Global_newton newton(system);
+  double residual = state.refresh_sums();
+  const double start = residual;
+  for(int k = 0; k < 5; ++k) {
+    const double before = residual;
+    if(!newton.step(state, residual)) break;
+    EXPECT_LT(residual, before);
+    EXPECT_EQ(state.invalid_faces(), 0u);
+  }
+  EXPECT_LT(residual, start);
+  EXPECT_EQ(SPI::certify(system.triangles, x).flipped_faces, 0u);
+}
+
+// ---------------------------------------------------------------------------------------------------------------
+// Certificate and distortion
+
+TEST(Certificate, DetectsFlipsAndDoubleCovers)
+{
+  Mesh m = to_mesh(icosahedron());
+  auto sphere = m.add_property_map<Mesh::Vertex_index, Point>("v:sphere").first;
+  for(auto v : m.vertices()) {
+    const Point& p = m.point(v);
+    const double r = std::sqrt(CGAL::to_double(Kernel::Vector_3(CGAL::ORIGIN, p).squared_length()));
+    sphere[v] = Point(p.x() / r, p.y() / r, p.z() / r);
+  }
+  SP::Sphere_map_certificate c = SP::certify_sphere_map(m, sphere);
+  EXPECT_TRUE(c.bijective);
+  EXPECT_NEAR(c.total_signed_area, 4 * CGAL_PI, 1e-12);
+  const SP::Spherical_distortion d = SP::measure_spherical_distortion(m, sphere);
+  EXPECT_LT(d.max_angle_error_degrees, 1e-9);
+  EXPECT_LT(d.log_area_ratio_stddev, 1e-9);
+
+  // A mirror image: every triangle negative.
+  for(auto v : m.vertices()) sphere[v] = Point(sphere[v].x(), sphere[v].y(), -sphere[v].z());
+  c = SP::certify_sphere_map(m, sphere);
+  EXPECT_FALSE(c.bijective);
+  EXPECT_EQ(c.flipped_faces, m.number_of_faces());
+  EXPECT_FALSE(SP::is_bijective_on_sphere(m, sphere));
+
+  // All vertices on a great circle: degenerate, not positive.
+  for(auto v : m.vertices()) sphere[v] = Point(sphere[v].x(), sphere[v].y(), 0.);
+  EXPECT_FALSE(SP::is_bijective_on_sphere(m, sphere));
+}
+
+// ---------------------------------------------------------------------------------------------------------------
+// The public function
+
+TEST(SphericalParameterize, SurfaceMeshAndPolyhedronGiveTheSameSphere)
+{
+  for(const std::string file : {shared_meshes + "/trimesh_fuze.off", cgal_data + "/triceratops.off"}) {
+    Mesh m = read_mesh(file);
+    Polyhedron p;
+    ASSERT_TRUE(CGAL::IO::read_polygon_mesh(file, p));
+    auto sm_sphere = m.add_property_map<Mesh::Vertex_index, Point>("v:sphere").first;
+    std::map<Polyhedron::Vertex_const_handle, Point> poly_sphere_storage;
+    auto poly_sphere = boost::make_assoc_property_map(poly_sphere_storage);
+    const SP::Result rm = SP::spherical_parameterize(m, sm_sphere);
+    const SP::Result rp = SP::spherical_parameterize(p, poly_sphere);
+    ASSERT_EQ(rm.status, SP::Error_code::OK) << rm.message;
+    ASSERT_EQ(rp.status, SP::Error_code::OK) << rp.message;
+    EXPECT_TRUE(SP::is_bijective_on_sphere(p, poly_sphere));
+    std::size_t i = 0;
+    double largest = 0.;
+    auto pv = p.vertices_begin();
+    for(auto v : m.vertices()) {
+      ASSERT_TRUE(pv->point() == m.point(v)) << "vertex order differs at " << i;
+      largest = std::max(largest, std::sqrt(CGAL::squared_distance(sm_sphere[v], poly_sphere_storage[pv])));
+      ++pv;
+      ++i;
+    }
+    EXPECT_LE(largest, 1e-12) << file;
+  }
+}
+
+TEST(SphericalParameterize, DeterministicAndInputUntouched)
+{
+  Mesh m = read_mesh(cgal_data + "/cow.off");
+  const Mesh copy = m;
+  auto first = m.add_property_map<Mesh::Vertex_index, Point>("v:first").first;
+  auto second = m.add_property_map<Mesh::Vertex_index, Point>("v:second").first;
+  const SP::Result r1 = SP::spherical_parameterize(m, first, SP::parameters::metis_seed(3));
+  const SP::Result r2 = SP::spherical_parameterize(m, second, SP::parameters::metis_seed(3));
+  ASSERT_TRUE(r1) << r1.message;
+  ASSERT_TRUE(r2) << r2.message;
+  for(auto v : m.vertices()) {
+    EXPECT_TRUE(first[v] == second[v]);  // bitwise
+    EXPECT_TRUE(m.point(v) == copy.point(v));
+  }
+  EXPECT_EQ(m.number_of_faces(), copy.number_of_faces());
+  EXPECT_EQ(r1.residual, r2.residual);
+}
+
+TEST(SphericalParameterize, TinyMeshes)
+{
+  for(const Arrays& a : {octahedron(), cube(), icosahedron()}) {
+    Mesh m = to_mesh(a);
+    auto sphere = m.add_property_map<Mesh::Vertex_index, Point>("v:sphere").first;
+    const SP::Result r = SP::spherical_parameterize(m, sphere);
+    EXPECT_EQ(r.status, SP::Error_code::OK) << r.message;
+    EXPECT_TRUE(SP::is_bijective_on_sphere(m, sphere));
+  }
+}
+
+TEST(SphericalParameterize, ReportsInputErrorsAndWritesNothing)
+{
+  Mesh m = to_mesh(torus());
+  auto sphere = m.add_property_map<Mesh::Vertex_index, Point>("v:sphere", Point(7, 7, 7)).first;
+  const SP::Result r = SP::spherical_parameterize(m, sphere);
+  EXPECT_EQ(r.status, SP::Error_code::GENUS_NOT_ZERO);
+  EXPECT_FALSE(r);
+  for(auto v : m.vertices()) EXPECT_TRUE(sphere[v] == Point(7, 7, 7));
+
+  Mesh cow = read_mesh(cgal_data + "/cow.off");
+  auto cow_sphere = cow.add_property_map<Mesh::Vertex_index, Point>("v:sphere").first;
+  EXPECT_EQ(SP::spherical_parameterize(cow, cow_sphere, SP::parameters::weighting(SP::Weighting::USER_MAP)).status,
+            SP::Error_code::INVALID_WEIGHTS);
+}
+
+TEST(SphericalParameterize, NamedParametersAndUserWeights)
+{
+  Mesh m = read_mesh(cgal_data + "/triceratops.off");
+  auto a = m.add_property_map<Mesh::Vertex_index, Point>("v:a").first;
+  auto b = m.add_property_map<Mesh::Vertex_index, Point>("v:b").first;
+  auto ones = m.add_property_map<Mesh::Halfedge_index, double>("h:w", 1.).first;
+  // Ours first and CGAL's chained after, or combined in any order.
+  const SP::Result r1 = SP::spherical_parameterize(
+      m, a, SP::parameters::tolerance(1e-7, CGAL::parameters::vertex_point_map(get(CGAL::vertex_point, m)).verbose(false)));
+  const SP::Result r2 = SP::spherical_parameterize(
+      m, b, SP::parameters::combine(CGAL::parameters::verbose(false), SP::parameters::halfedge_weight_map(ones),
+                                    SP::parameters::tolerance(1e-7)));
+  ASSERT_TRUE(r1) << r1.message;
+  ASSERT_TRUE(r2) << r2.message;
+  EXPECT_LT(r1.residual, 1e-7);
+  EXPECT_LT(r2.residual, 1e-7);
+  EXPECT_TRUE(SP::is_bijective_on_sphere(m, b));
+}
