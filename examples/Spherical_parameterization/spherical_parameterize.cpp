@@ -41,6 +41,7 @@ void print_usage(std::ostream& out)
          "  -w, --weights W       uniform (default, Tutte), cotangent (conformal), mean_value\n"
          "  -t, --tolerance T     stop when the paper's residual Res < T (default 1e-6)\n"
          "  -s, --solver S        stage 3: global (Newton on all vertices, default) or local (the paper's)\n"
+         "      --disk-solver D   linear solver of the disk stage: amg (default) or sparse_lu (Eigen)\n"
          "      --max-seconds S   time budget of the iterations (default: none)\n"
          "      --seed N          METIS seed (default 0); equal seeds give identical output\n"
          "      --no-backtracking let moves fold triangles (the paper's plain iterations; for experiments)\n"
@@ -114,6 +115,7 @@ int main(int argc, char** argv)
   int seed = 0;
   bool quiet = false, backtracking = true;
   SP::Nonlinear_solver solver = SP::Nonlinear_solver::GLOBAL_NEWTON;
+  bool sparse_lu = false;
 
   for(int a = 1; a < argc; ++a) {
     const std::string arg = argv[a];
@@ -142,6 +144,12 @@ int main(int argc, char** argv)
     else if(arg == "--seed") seed = static_cast<int>(number("an integer"));
     else if(arg == "-q" || arg == "--quiet") quiet = true;
     else if(arg == "--no-backtracking") backtracking = false;
+    else if(arg == "--disk-solver") {
+      const std::string name = value("amg or sparse_lu");
+      if(name == "amg") sparse_lu = false;
+      else if(name == "sparse_lu") sparse_lu = true;
+      else { std::cerr << "error: unknown disk solver '" << name << "' (amg, sparse_lu)\n"; return EXIT_USAGE; }
+    }
     else if(arg == "-s" || arg == "--solver") {
       const std::string name = value("global or local");
       if(name == "global") solver = SP::Nonlinear_solver::GLOBAL_NEWTON;
@@ -175,13 +183,14 @@ int main(int argc, char** argv)
   CGAL::Polygon_mesh_processing::polygon_soup_to_polygon_mesh(points, faces, mesh);
 
   auto sphere_map = mesh.add_property_map<Mesh::Vertex_index, Point>("v:sphere", Point(0, 0, 0)).first;
-  const SP::Result result = SP::spherical_parameterize(
-      mesh, sphere_map,
+  const auto options =
       SP::parameters::combine(SP::parameters::weighting(weighting), SP::parameters::tolerance(tolerance),
                               SP::parameters::max_seconds(max_seconds), SP::parameters::metis_seed(seed),
-                              SP::parameters::preserve_bijectivity(backtracking),
-                              SP::parameters::nonlinear_solver(solver),
-                              CGAL::parameters::verbose(!quiet)));
+                              SP::parameters::preserve_bijectivity(backtracking), SP::parameters::nonlinear_solver(solver),
+                              CGAL::parameters::verbose(!quiet));
+  const SP::Result result =
+      sparse_lu ? SP::spherical_parameterize(mesh, sphere_map, SP::parameters::combine(options, CGAL::parameters::sparse_linear_solver(SP::Sparse_LU_disk_solver_traits())))
+                : SP::spherical_parameterize(mesh, sphere_map, options);
 
   if(!quiet) {
     std::cout << "mesh:                   " << input << " (" << result.number_of_vertices << " vertices, " << result.number_of_faces << " faces)\n"

@@ -556,13 +556,13 @@ TEST(SphericalParameterize, NamedParametersAndUserWeights)
   auto ones = m.add_property_map<Mesh::Halfedge_index, double>("h:w", 1.).first;
   // Ours first and CGAL's chained after, or combined in any order.
   const SP::Result r1 = SP::spherical_parameterize(
-      m, a, SP::parameters::tolerance(1e-7, CGAL::parameters::vertex_point_map(get(CGAL::vertex_point, m)).verbose(false)));
+      m, a, SP::parameters::tolerance(5e-7, CGAL::parameters::vertex_point_map(get(CGAL::vertex_point, m)).verbose(false)));
   const SP::Result r2 = SP::spherical_parameterize(
       m, b, SP::parameters::combine(CGAL::parameters::verbose(false), SP::parameters::halfedge_weight_map(ones),
-                                    SP::parameters::tolerance(1e-7)));
+                                    SP::parameters::tolerance(5e-7)));
   ASSERT_TRUE(r1) << r1.message;
   ASSERT_TRUE(r2) << r2.message;
-  EXPECT_LT(r1.residual, 1e-7);
-  EXPECT_LT(r2.residual, 1e-7);
+  EXPECT_LT(r1.residual, 5e-7);
+  EXPECT_LT(r2.residual, 5e-7);
   EXPECT_TRUE(SP::is_bijective_on_sphere(m, b));
 }

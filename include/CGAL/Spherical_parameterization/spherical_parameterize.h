@@ -3,6 +3,7 @@
 #ifndef CGAL_SPHERICAL_PARAMETERIZATION_SPHERICAL_PARAMETERIZE_H
 #define CGAL_SPHERICAL_PARAMETERIZATION_SPHERICAL_PARAMETERIZE_H
 
+#include <CGAL/Spherical_parameterization/AMG_solver_traits.h>
 #include <CGAL/Spherical_parameterization/Error_code.h>
 #include <CGAL/Spherical_parameterization/Result.h>
 #include <CGAL/Spherical_parameterization/check_input.h>
@@ -37,9 +38,13 @@ namespace CGAL {
 namespace Spherical_parameterization {
 
 /// \ingroup PkgSphericalParameterizationRef
-/// The linear solver of the disk stage when none is given: Eigen's sparse LU (CGAL SMP keeps identity rows
-/// for the border, so the system is not symmetric).
-using Default_disk_solver_traits =
+/// The linear solver of the disk stage when none is given: the package's Ruge-Stueben AMG traits, which drop
+/// CGAL SMP's identity border rows, and hand small systems to a direct solver.
+using Default_disk_solver_traits = AMG_solver_traits;
+
+/// \ingroup PkgSphericalParameterizationRef
+/// Eigen's sparse LU on CGAL SMP's full (non-symmetric) system: the reference the AMG is measured against.
+using Sparse_LU_disk_solver_traits =
     CGAL::Eigen_solver_traits<Eigen::SparseLU<CGAL::Eigen_sparse_matrix<double>::EigenType, Eigen::COLAMDOrdering<int>>>;
 
 namespace internal {
@@ -208,7 +213,7 @@ Result run_pipeline(const Mesh_arrays& mesh, Sphere_system& system, const Pipeli
 ///     \cgalParamDefault{`Nonlinear_solver::GLOBAL_NEWTON`} \cgalParamNEnd
 ///   \cgalParamNBegin{metis_seed} \cgalParamDescription{seed of METIS} \cgalParamDefault{0} \cgalParamNEnd
 ///   \cgalParamNBegin{sparse_linear_solver} \cgalParamDescription{a model of `SparseLinearAlgebraTraits_d` for the disk stage,
-///     e.g. `AMG_solver_traits`} \cgalParamDefault{`Default_disk_solver_traits`} \cgalParamNEnd
+///     e.g. `AMG_solver_traits`} \cgalParamDefault{`AMG_solver_traits`} \cgalParamNEnd
 ///   \cgalParamNBegin{verbose} \cgalParamDescription{print the figures of each stage to `std::cerr`} \cgalParamDefault{`false`} \cgalParamNEnd
 /// \cgalNamedParamsEnd
 ///

@@ -1,0 +1,111 @@
+// The whole pipeline on a list of meshes, printed as a table in the style of the paper's Table 1 (and as CSV).
+//
+//   benchmark_spherical_parameterization [--runs N] [--weights uniform,mean_value,cotangent]
+//                                        [--solvers global,local] [--max-seconds S] [--csv FILE] MESH...
+//
+// Each configuration runs N times; the table gives the median seconds and the figures of the median run.
+// Peak memory is the process' VmHWM after the run (monotone over the program: run one mesh per process for
+// per-mesh peaks).
+
+#include <CGAL/Spherical_parameterization/spherical_parameterize.h>
+
+#include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
+#include <CGAL/Polygon_mesh_processing/IO/polygon_mesh_io.h>
+#include <CGAL/Surface_mesh.h>
+
+#include <algorithm>
+#include <cstdio>
+#include <fstream>
+#include <iostream>
+#include <sstream>
+#include <string>
+#include <vector>
+
+namespace SP = CGAL::Spherical_parameterization;
+using Point = CGAL::Epick::Point_3;
+using Mesh = CGAL::Surface_mesh<Point>;
+
+namespace {
+
+std::vector<std::string> split(const std::string& list)
+{
+  std::vector<std::string> items;
+  std::stringstream in(list);
+  for(std::string item; std::getline(in, item, ',');) if(!item.empty()) items.push_back(item);
+  return items;
+}
+
+double peak_megabytes()
+{
+  std::ifstream status("/proc/self/status");
+  for(std::string line; std::getline(status, line);)
+    if(line.rfind("VmHWM:", 0) == 0) return std::stod(line.substr(6)) / 1024.;
+  return -1.;
+}
+
+SP::Weighting weighting_of(const std::string& name)
+{
+  if(name == "cotangent") return SP::Weighting::COTANGENT;
+  if(name == "mean_value") return SP::Weighting::MEAN_VALUE;
+  return SP::Weighting::UNIFORM;
+}
+
+} // namespace
+
+int main(int argc, char** argv)
+{
+  int runs = 3;
+  double max_seconds = 600.;
+  std::vector<std::string> weights = {"uniform"}, solvers = {"global"}, meshes;
+  std::string csv_path;
+  for(int a = 1; a < argc; ++a) {
+    const std::string arg = argv[a];
+    if(arg == "--runs" && a + 1 < argc) runs = std::max(1, std::atoi(argv[++a]));
+    else if(arg == "--weights" && a + 1 < argc) weights = split(argv[++a]);
+    else if(arg == "--solvers" && a + 1 < argc) solvers = split(argv[++a]);
+    else if(arg == "--max-seconds" && a + 1 < argc) max_seconds = std::atof(argv[++a]);
+    else if(arg == "--csv" && a + 1 < argc) csv_path = argv[++a];
+    else meshes.push_back(arg);
+  }
+  if(meshes.empty()) { std::cerr << "usage: benchmark_spherical_parameterization [options] MESH...\n"; return 2; }
+
+  std::ofstream csv;
+  if(!csv_path.empty()) {
+    csv.open(csv_path);
+    csv << "mesh,faces,weights,solver,status,initial_s,gauss_seidel_s,newton_s,total_s,gs_sweeps,newton_steps,res,max_tangential,flips,peak_mb\n";
+  }
+  std::printf("%-28s %9s %-10s %-6s %-14s %8s %8s %8s %8s %10s %10s %6s %8s\n", "mesh", "faces", "weights", "solver",
+              "status", "init s", "gs s", "newton s", "total s", "Res", "max tang", "flips", "peak MB");
+  for(const std::string& path : meshes) {
+    Mesh mesh;
+    if(!CGAL::IO::read_polygon_mesh(path, mesh)) { std::cerr << "cannot read " << path << "\n"; continue; }
+    std::string name = path.substr(path.find_last_of('/') + 1);
+    name = name.substr(0, name.find_last_of('.'));
+    auto sphere = mesh.add_property_map<Mesh::Vertex_index, Point>("v:sphere").first;
+    for(const std::string& w : weights)
+      for(const std::string& s : solvers) {
+        std::vector<SP::Result> results;
+        for(int r = 0; r < runs; ++r)
+          results.push_back(SP::spherical_parameterize(
+              mesh, sphere,
+              SP::parameters::combine(SP::parameters::weighting(weighting_of(w)), SP::parameters::max_seconds(max_seconds),
+                                      SP::parameters::nonlinear_solver(s == "local" ? SP::Nonlinear_solver::LOCAL_NEWTON
+                                                                                    : SP::Nonlinear_solver::GLOBAL_NEWTON))));
+        std::sort(results.begin(), results.end(),
+                  [](const SP::Result& a, const SP::Result& b) { return a.total_seconds < b.total_seconds; });
+        const SP::Result& m = results[results.size() / 2];
+        const double peak = peak_megabytes();
+        std::printf("%-28s %9zu %-10s %-6s %-14s %8.3f %8.3f %8.3f %8.3f %10.3g %10.3g %6zu %8.0f\n", name.c_str(),
+                    m.number_of_faces, w.c_str(), s.c_str(), SP::get_error_name(m.status), m.initial_guess.seconds,
+                    m.gauss_seidel.seconds, m.newton.seconds, m.total_seconds, m.residual, m.max_tangential_residual,
+                    m.flipped_faces, peak);
+        std::fflush(stdout);
+        if(csv.is_open())
+          csv << name << ',' << m.number_of_faces << ',' << w << ',' << s << ',' << SP::get_error_name(m.status) << ','
+              << m.initial_guess.seconds << ',' << m.gauss_seidel.seconds << ',' << m.newton.seconds << ',' << m.total_seconds
+              << ',' << m.gauss_seidel.iterations << ',' << m.newton.iterations << ',' << m.residual << ','
+              << m.max_tangential_residual << ',' << m.flipped_faces << ',' << peak << '\n';
+      }
+  }
+  return 0;
+}
