@@ -4,6 +4,15 @@ file(GLOB SP_SHARED_CORPUS "${SPHERICAL_PARAMETERIZATION_SHARED_MESHES}/*.off")
 set(SP_CGAL_CORPUS triceratops cow homer bear man armadillo bunny00)
 set(SP_SLOW_CASES "")
 
+# A missing corpus must fail the run, not silently shrink it.
+if(NOT SP_SHARED_CORPUS)
+  message(WARNING "No mesh found in ${SPHERICAL_PARAMETERIZATION_SHARED_MESHES}")
+  add_test(NAME corpus.shared_meshes_present COMMAND ${CMAKE_COMMAND} -E false)
+endif()
+if(NOT EXISTS ${SPHERICAL_PARAMETERIZATION_CGAL_DATA}/triceratops.off)
+  message(WARNING "CGAL's sample meshes are not in ${SPHERICAL_PARAMETERIZATION_CGAL_DATA} (run scripts/setup.sh)")
+endif()
+
 file(STRINGS ${CMAKE_CURRENT_SOURCE_DIR}/known_failures.txt SP_KNOWN_FAILURES REGEX "^[^#].*")
 
 function(sp_add_corpus_case mesh_path weights)
