@@ -565,4 +565,12 @@ TEST(SphericalParameterize, NamedParametersAndUserWeights)
   EXPECT_LT(r1.residual, 5e-7);
   EXPECT_LT(r2.residual, 5e-7);
   EXPECT_TRUE(SP::is_bijective_on_sphere(m, b));
+
+  // CGAL's METIS_options tag reaches the separator.
+  idx_t metis_options[METIS_NOPTIONS];
+  METIS_SetDefaultOptions(metis_options);
+  metis_options[METIS_OPTION_SEED] = 11;
+  const SP::Result r3 = SP::spherical_parameterize(m, a, CGAL::parameters::METIS_options(metis_options));
+  EXPECT_TRUE(r3) << r3.message;
+  EXPECT_GT(r3.separator_size, 0u);
 }

@@ -53,6 +53,7 @@ struct Pipeline_options {
   Weighting weighting = Weighting::UNIFORM;
   Nonlinear_solver nonlinear_solver = Nonlinear_solver::GLOBAL_NEWTON;
   int metis_seed = 0;
+  const idx_t* metis_options = nullptr;  // METIS_NOPTIONS values, or nullptr for METIS' defaults and metis_seed
   bool verbose = false;
   Iteration_options iterations;
 };
@@ -87,7 +88,7 @@ Result run_pipeline(const Mesh_arrays& mesh, Sphere_system& system, const Pipeli
 
   // Stage 1.
   Stopwatch stage;
-  const Two_disk_partition partition = split_into_two_disks(system, options.metis_seed);
+  const Two_disk_partition partition = split_into_two_disks(system, options.metis_seed, options.metis_options);
   if(!partition.valid) {
     result.status = Error_code::PARTITION_FAILED;
     result.message = get_error_message(result.status);
@@ -212,6 +213,8 @@ Result run_pipeline(const Mesh_arrays& mesh, Sphere_system& system, const Pipeli
 ///   \cgalParamNBegin{nonlinear_solver} \cgalParamDescription{the solver of stage 3 (`Nonlinear_solver`)}
 ///     \cgalParamDefault{`Nonlinear_solver::GLOBAL_NEWTON`} \cgalParamNEnd
 ///   \cgalParamNBegin{metis_seed} \cgalParamDescription{seed of METIS} \cgalParamDefault{0} \cgalParamNEnd
+///   \cgalParamNBegin{METIS_options} \cgalParamDescription{an `idx_t*` to `METIS_NOPTIONS` options of `METIS_ComputeVertexSeparator`
+///     (CGAL's tag); overrides `metis_seed`} \cgalParamDefault{METIS' defaults with `metis_seed`} \cgalParamNEnd
 ///   \cgalParamNBegin{sparse_linear_solver} \cgalParamDescription{a model of `SparseLinearAlgebraTraits_d` for the disk stage,
 ///     e.g. `AMG_solver_traits`} \cgalParamDefault{`AMG_solver_traits`} \cgalParamNEnd
 ///   \cgalParamNBegin{verbose} \cgalParamDescription{print the figures of each stage to `std::cerr`} \cgalParamDefault{`false`} \cgalParamNEnd
@@ -250,6 +253,7 @@ Result spherical_parameterize(const TriangleMesh& tm, VertexSphereMap vsm,
                                        has_user_weights ? Weighting::USER_MAP : Weighting::UNIFORM);
   options.nonlinear_solver = choose_parameter(get_parameter(np, internal_np::nonlinear_solver), Nonlinear_solver::GLOBAL_NEWTON);
   options.metis_seed = choose_parameter(get_parameter(np, internal_np::metis_seed), 0);
+  options.metis_options = choose_parameter(get_parameter(np, CGAL::internal_np::METIS_options), static_cast<idx_t*>(nullptr));
   options.verbose = choose_parameter(get_parameter(np, CGAL::internal_np::verbose), false);
   options.iterations.tolerance = choose_parameter(get_parameter(np, internal_np::tolerance), 1e-6);
   options.iterations.max_gauss_seidel_sweeps =

@@ -175,7 +175,7 @@ inline Iteration_report global_newton(Sphere_state& state, const Iteration_optio
   std::size_t local_sweeps = 0;
   // Stagnation: non-symmetric weights (mean value) generally admit no exact solution, because the three torque
   // identities that make the equations consistent for symmetric weights fail; the residual then levels off at a
-  // least-squares floor. Stop when 50 steps gained less than 0.1% in all.
+  // least-squares floor. Stop when 200 steps gained less than 1% in all.
   std::vector<double> history;
   while(!(residual < options.tolerance && state.invalid_faces() == 0)) {
     if(report.sweeps >= options.max_newton_sweeps) break;
@@ -192,7 +192,7 @@ inline Iteration_report global_newton(Sphere_state& state, const Iteration_optio
     ++report.sweeps;
     if(options.progress) options.progress("global newton", report.sweeps, residual, state.invalid_faces());
     history.push_back(residual);
-    if(history.size() > 50 && residual > 0.999 * history[history.size() - 51]) { report.stagnated = true; break; }
+    if(history.size() > 200 && residual > 0.99 * history[history.size() - 201]) { report.stagnated = true; break; }
   }
   report.residual = residual;
   report.converged = residual < options.tolerance && state.invalid_faces() == 0;

@@ -55,7 +55,7 @@ inline std::vector<int> face_adjacency(const std::vector<std::array<int, 3>>& tr
 }
 
 // METIS vertex separator: part[v] is 0 or 1 for the two sides, 2 for the separator. Empty on failure.
-inline std::vector<idx_t> metis_vertex_separator(const Sphere_system& system, int seed)
+inline std::vector<idx_t> metis_vertex_separator(const Sphere_system& system, int seed, const idx_t* user_options)
 {
   idx_t n = static_cast<idx_t>(system.number_of_vertices);
   if(n < 6) return {};  // too small for a meaningful separator: the disk growth alone balances it
@@ -65,6 +65,7 @@ inline std::vector<idx_t> metis_vertex_separator(const Sphere_system& system, in
   idx_t options[METIS_NOPTIONS];
   METIS_SetDefaultOptions(options);
   options[METIS_OPTION_SEED] = static_cast<idx_t>(seed);
+  if(user_options != nullptr) std::copy(user_options, user_options + METIS_NOPTIONS, options);
   idx_t separator_size = 0;
   if(METIS_ComputeVertexSeparator(&n, xadj.data(), adjncy.data(), nullptr, options, &separator_size, part.data()) != METIS_OK)
     return {};
@@ -186,7 +187,8 @@ inline bool has_flat_face(const Disk_grower& disk, const std::vector<int>& oppos
   return false;
 }
 
-inline Two_disk_partition split_into_two_disks(const Sphere_system& system, int metis_seed)
+inline Two_disk_partition split_into_two_disks(const Sphere_system& system, int metis_seed,
+                                               const idx_t* metis_options = nullptr)
 {
   Two_disk_partition partition;
   const auto& triangles = system.triangles;
@@ -196,7 +198,7 @@ inline Two_disk_partition split_into_two_disks(const Sphere_system& system, int 
   for(int o : opposite) if(o < 0) return partition;
 
   // Faces that may join disk A: none of their vertices in METIS' second part.
-  const std::vector<idx_t> part = metis_vertex_separator(system, metis_seed);
+  const std::vector<idx_t> part = metis_vertex_separator(system, metis_seed, metis_options);
   std::vector<char> allowed(nf, 1);
   std::size_t seed = 0, target = nf / 2;
   if(!part.empty()) {
