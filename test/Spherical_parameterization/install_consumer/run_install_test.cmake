@@ -1,0 +1,21 @@
+# Installs the package into a scratch prefix, then configures, builds and runs a user project against it.
+# Variables: BUILD_DIR (the package's build folder), CONSUMER_DIR (this folder), WORK_DIR (scratch).
+file(REMOVE_RECURSE ${WORK_DIR})
+execute_process(COMMAND ${CMAKE_COMMAND} --install ${BUILD_DIR} --prefix ${WORK_DIR}/prefix RESULT_VARIABLE status OUTPUT_QUIET)
+if(status)
+  message(FATAL_ERROR "install failed")
+endif()
+execute_process(COMMAND ${CMAKE_COMMAND} -S ${CONSUMER_DIR} -B ${WORK_DIR}/build -DCMAKE_BUILD_TYPE=Release
+                        -DCMAKE_PREFIX_PATH=${WORK_DIR}/prefix RESULT_VARIABLE status OUTPUT_QUIET)
+if(status)
+  message(FATAL_ERROR "find_package(CGAL_Spherical_parameterization) failed in a user project")
+endif()
+execute_process(COMMAND ${CMAKE_COMMAND} --build ${WORK_DIR}/build RESULT_VARIABLE status OUTPUT_QUIET)
+if(status)
+  message(FATAL_ERROR "the user project does not build against the installed headers")
+endif()
+execute_process(COMMAND ${WORK_DIR}/build/consumer RESULT_VARIABLE status OUTPUT_VARIABLE output)
+message(STATUS "consumer printed: ${output}")
+if(status)
+  message(FATAL_ERROR "the user project's spherical_parameterize() did not succeed")
+endif()
