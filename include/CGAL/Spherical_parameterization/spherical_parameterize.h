@@ -97,6 +97,11 @@ Result run_pipeline(const Mesh_arrays& mesh, Sphere_system& system, const Pipeli
   result.separator_size = partition.separator_size;
   result.cut_loop_length = partition.loop.size();
   bool embedded = initial_sphere(mesh, system, partition, options.weighting, solver, x);
+  if(!embedded) {
+    // An iterative solver can give up where a direct one does not: try Eigen's sparse LU before failing.
+    embedded = initial_sphere(mesh, system, partition, options.weighting, Sparse_LU_disk_solver_traits(), x);
+    if(options.verbose && embedded) std::cerr << "stage 1: the disk solver failed; Eigen's sparse LU was used\n";
+  }
   Sphere_certificate start = embedded ? certify(system.triangles, x) : Sphere_certificate();
   if(options.weighting != Weighting::UNIFORM && (!embedded || start.flipped_faces > 0)) {
     // Weights that may be negative or non-symmetric can fold the disks: Tutte's disks cannot.
