@@ -14,6 +14,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <limits>
 #include <map>
 #include <set>
 #include <string>
@@ -469,6 +470,17 @@ TEST(Certificate, DetectsFlipsAndDoubleCovers)
   EXPECT_EQ(c.flipped_faces, m.number_of_faces());
   EXPECT_FALSE(SP::is_bijective_on_sphere(m, sphere));
 
+  // An open mesh can have every triangle positive without covering the sphere: not a certificate.
+  Arrays open = octahedron();
+  open.faces.pop_back();
+  Mesh open_mesh = to_mesh(open);
+  auto open_sphere = open_mesh.add_property_map<Mesh::Vertex_index, Point>("v:sphere").first;
+  for(auto v : open_mesh.vertices()) open_sphere[v] = open_mesh.point(v);
+  const SP::Sphere_map_certificate open_certificate = SP::certify_sphere_map(open_mesh, open_sphere);
+  EXPECT_EQ(open_certificate.flipped_faces, 0u);
+  EXPECT_FALSE(open_certificate.valid_mesh);
+  EXPECT_FALSE(open_certificate.bijective);
+
   // All vertices on a great circle: degenerate, not positive.
   for(auto v : m.vertices()) sphere[v] = Point(sphere[v].x(), sphere[v].y(), 0.);
   EXPECT_FALSE(SP::is_bijective_on_sphere(m, sphere));
@@ -566,11 +578,20 @@ TEST(SphericalParameterize, NamedParametersAndUserWeights)
   EXPECT_LT(r2.residual, 5e-7);
   EXPECT_TRUE(SP::is_bijective_on_sphere(m, b));
 
-  // CGAL's METIS_options tag reaches the separator.
+  // CGAL's METIS_options tag reaches the separator, given as the array or, as CGAL's METIS functions take it,
+  // as a pointer to the array.
   idx_t metis_options[METIS_NOPTIONS];
   METIS_SetDefaultOptions(metis_options);
   metis_options[METIS_OPTION_SEED] = 11;
   const SP::Result r3 = SP::spherical_parameterize(m, a, CGAL::parameters::METIS_options(metis_options));
   EXPECT_TRUE(r3) << r3.message;
   EXPECT_GT(r3.separator_size, 0u);
+  const SP::Result r4 = SP::spherical_parameterize(m, b, CGAL::parameters::METIS_options(&metis_options));
+  EXPECT_TRUE(r4) << r4.message;
+  for(auto v : m.vertices()) EXPECT_TRUE(a[v] == b[v]);  // the same options give the same sphere
+
+  // A user weight of -infinity is an invalid weight, not a missing one.
+  auto bad = m.add_property_map<Mesh::Halfedge_index, double>("h:bad", 1.).first;
+  bad[*m.halfedges().begin()] = -std::numeric_limits<double>::infinity();
+  EXPECT_EQ(SP::spherical_parameterize(m, a, SP::parameters::halfedge_weight_map(bad)).status, SP::Error_code::INVALID_WEIGHTS);
 }

@@ -3,6 +3,7 @@
 #ifndef CGAL_SPHERICAL_PARAMETERIZATION_IS_BIJECTIVE_ON_SPHERE_H
 #define CGAL_SPHERICAL_PARAMETERIZATION_IS_BIJECTIVE_ON_SPHERE_H
 
+#include <CGAL/Spherical_parameterization/check_input.h>
 #include <CGAL/Spherical_parameterization/internal/Mesh_arrays.h>
 #include <CGAL/Spherical_parameterization/internal/sphere_orientation.h>
 
@@ -23,7 +24,8 @@ struct Sphere_map_certificate {
   std::size_t number_of_faces = 0;
   std::size_t flipped_faces = 0;     ///< Faces whose spherical triangle is not positively oriented (exact predicate).
   double total_signed_area = 0.;     ///< Sum of the signed areas of the spherical triangles (4 pi for a bijection).
-  bool bijective = false;            ///< No flipped face and total area 4 pi.
+  bool valid_mesh = false;           ///< The mesh passes `check_input()` (closed, connected, manifold, oriented, genus 0).
+  bool bijective = false;            ///< A valid mesh, no flipped face and total area 4 pi.
 };
 
 namespace internal {
@@ -53,7 +55,8 @@ Mesh_arrays read_connectivity(const TriangleMesh& tm, const NamedParameters& np)
 
 /// \ingroup PkgSphericalParameterizationRef
 /// Certifies a map `vsm` of the vertices of the closed triangle mesh `tm` to points on (or radially projected
-/// onto) the unit sphere: every spherical triangle must be positively oriented, `CGAL::orientation(ORIGIN, p, q, r)
+/// onto) the unit sphere: the mesh must pass `check_input()` (the argument below needs a closed, connected,
+/// oriented genus-0 surface), every spherical triangle must be positively oriented, `CGAL::orientation(ORIGIN, p, q, r)
 /// == POSITIVE` decided exactly, and the signed spherical areas must add up to 4 pi (with every triangle positive
 /// the total is 4 pi times the degree of the map, so this excludes multiple coverings).
 /// \cgalNamedParamsBegin
@@ -69,6 +72,8 @@ Sphere_map_certificate certify_sphere_map(const TriangleMesh& tm, VertexSphereMa
   Sphere_map_certificate certificate;
   certificate.number_of_faces = mesh.polygons.size();
   if(mesh.triangles.size() != mesh.polygons.size()) { certificate.flipped_faces = mesh.polygons.size(); return certificate; }
+  // Orientation and area prove a bijection only for a closed, connected, oriented genus-0 surface.
+  certificate.valid_mesh = internal::check_mesh_arrays(mesh).status == Error_code::OK;
   // Orientation does not depend on the radius; the areas are those of the radially projected triangles.
   std::vector<internal::Vector3> unit(x.size());
   for(std::size_t i = 0; i < x.size(); ++i) {
@@ -86,7 +91,7 @@ Sphere_map_certificate certify_sphere_map(const TriangleMesh& tm, VertexSphereMa
   }
   certificate.flipped_faces = flipped;
   certificate.total_signed_area = raw.total_signed_area;
-  certificate.bijective = flipped == 0 && std::abs(raw.total_signed_area - 4. * CGAL_PI) < CGAL_PI;
+  certificate.bijective = certificate.valid_mesh && flipped == 0 && std::abs(raw.total_signed_area - 4. * CGAL_PI) < CGAL_PI;
   return certificate;
 }
 

@@ -49,6 +49,10 @@ using Sparse_LU_disk_solver_traits =
 
 namespace internal {
 
+// CGAL's METIS functions take `METIS_options(&options)` (a pointer to the array); the array itself works too.
+inline const idx_t* metis_options_pointer(const idx_t* options) { return options; }
+inline const idx_t* metis_options_pointer(const idx_t (*options)[METIS_NOPTIONS]) { return options ? *options : nullptr; }
+
 struct Pipeline_options {
   Weighting weighting = Weighting::UNIFORM;
   Nonlinear_solver nonlinear_solver = Nonlinear_solver::GLOBAL_NEWTON;
@@ -187,7 +191,8 @@ Result run_pipeline(const Mesh_arrays& mesh, Sphere_system& system, const Pipeli
 /// Maps the closed, connected, genus-0 triangle mesh `tm` onto the unit sphere with the method of Saba, Yavneh,
 /// Gotsman and Sheffer: an initial guess from two planar disks (METIS separator, CGAL's fixed-border
 /// parameterizers, Moebius inversion, inverse stereographic projection), projected Gauss-Seidel while the
-/// residual decreases, then local Newton steps until the residual `Res` is below the tolerance. The output is
+/// residual decreases, then Newton steps (by default on all vertices at once; the paper's local Newton on request)
+/// until the residual `Res` is below the tolerance. The output is
 /// certified: every spherical triangle is positively oriented under an exact predicate and the areas add up to
 /// 4 pi (`Result::bijective`); only then is the status `Error_code::OK`.
 ///
@@ -218,7 +223,7 @@ Result run_pipeline(const Mesh_arrays& mesh, Sphere_system& system, const Pipeli
 ///   \cgalParamNBegin{nonlinear_solver} \cgalParamDescription{the solver of stage 3 (`Nonlinear_solver`)}
 ///     \cgalParamDefault{`Nonlinear_solver::GLOBAL_NEWTON`} \cgalParamNEnd
 ///   \cgalParamNBegin{metis_seed} \cgalParamDescription{seed of METIS} \cgalParamDefault{0} \cgalParamNEnd
-///   \cgalParamNBegin{METIS_options} \cgalParamDescription{an `idx_t*` to `METIS_NOPTIONS` options of `METIS_ComputeVertexSeparator`
+///   \cgalParamNBegin{METIS_options} \cgalParamDescription{an `idx_t*` (or a pointer to an array) to `METIS_NOPTIONS` options of `METIS_ComputeVertexSeparator`
 ///     (CGAL's tag); overrides `metis_seed`} \cgalParamDefault{METIS' defaults with `metis_seed`} \cgalParamNEnd
 ///   \cgalParamNBegin{sparse_linear_solver} \cgalParamDescription{a model of `SparseLinearAlgebraTraits_d` for the disk stage,
 ///     e.g. `AMG_solver_traits`} \cgalParamDefault{`AMG_solver_traits`} \cgalParamNEnd
@@ -258,7 +263,8 @@ Result spherical_parameterize(const TriangleMesh& tm, VertexSphereMap vsm,
                                        has_user_weights ? Weighting::USER_MAP : Weighting::UNIFORM);
   options.nonlinear_solver = choose_parameter(get_parameter(np, internal_np::nonlinear_solver), Nonlinear_solver::GLOBAL_NEWTON);
   options.metis_seed = choose_parameter(get_parameter(np, internal_np::metis_seed), 0);
-  options.metis_options = choose_parameter(get_parameter(np, CGAL::internal_np::METIS_options), static_cast<idx_t*>(nullptr));
+  options.metis_options = internal::metis_options_pointer(
+      choose_parameter(get_parameter(np, CGAL::internal_np::METIS_options), static_cast<idx_t*>(nullptr)));
   options.verbose = choose_parameter(get_parameter(np, CGAL::internal_np::verbose), false);
   options.iterations.tolerance = choose_parameter(get_parameter(np, internal_np::tolerance), 1e-6);
   options.iterations.max_gauss_seidel_sweeps =
@@ -292,7 +298,8 @@ Result spherical_parameterize(const TriangleMesh& tm, VertexSphereMap vsm,
     std::sort(user_table.begin(), user_table.end());
     user_weight = [&user_table](std::size_t i, int j) {
       const std::uint64_t key = static_cast<std::uint64_t>(i) << 32 | static_cast<std::uint64_t>(j);
-      auto it = std::lower_bound(user_table.begin(), user_table.end(), std::make_pair(key, -1e300));
+      auto it = std::lower_bound(user_table.begin(), user_table.end(), key,
+                                 [](const std::pair<std::uint64_t, double>& entry, std::uint64_t k) { return entry.first < k; });
       return it != user_table.end() && it->first == key ? it->second : 0.;
     };
   } else if(options.weighting == Weighting::USER_MAP) {

@@ -35,7 +35,8 @@ inline void tangent_frame(const Vector3& x, Vector3& t1, Vector3& t2)
 
 class Global_newton {
 public:
-  explicit Global_newton(const Sphere_system& system) : system_(system) {}
+  explicit Global_newton(const Sphere_system& system, bool preserve_bijectivity = true)
+    : system_(system), preserve_bijectivity_(preserve_bijectivity) {}
 
   // One Newton step; returns false when no acceptable step was found.
   bool step(Sphere_state& state, double& residual)
@@ -111,7 +112,7 @@ private:
         Vector3 y = x[i] + t * displacement[i];
         trial[i] = y * (1. / length(y));
       }
-      const bool keeps = state.keeps_positive_faces(trial);
+      const bool keeps = !preserve_bijectivity_ || state.keeps_positive_faces(trial);
       const double trial_residual = compute_residuals(system_, trial).paper;
       if(!keeps) continue;
       if(trial_residual < residual) {
@@ -157,6 +158,7 @@ private:
   }
 
   const Sphere_system& system_;
+  bool preserve_bijectivity_;
   double marquardt_ = 1e-6;  // relative Levenberg-Marquardt shift (non-symmetric weights)
   double damping_ = 1e-10;  // relative diagonal shift: keeps the rotations from blowing up the step
   std::vector<Vector3> t1_, t2_;
@@ -170,7 +172,7 @@ private:
 inline Iteration_report global_newton(Sphere_state& state, const Iteration_options& options, const Stopwatch& clock)
 {
   Iteration_report report;
-  Global_newton newton(state.system());
+  Global_newton newton(state.system(), options.preserve_bijectivity);
   double residual = state.refresh_sums();
   std::size_t local_sweeps = 0;
   // Stagnation: non-symmetric weights (mean value) generally admit no exact solution, because the three torque

@@ -263,14 +263,24 @@ inline Iteration_report local_newton(Sphere_state& state, const Iteration_option
   Iteration_report report;
   const Sphere_system& system = state.system();
   double residual = state.refresh_sums();
+  std::vector<double> history;
   while(!(residual < options.tolerance && state.invalid_faces() == 0)) {
     if(report.sweeps >= options.max_newton_sweeps) break;
     if(options.max_seconds >= 0. && clock.seconds() > options.max_seconds) { report.out_of_time = true; break; }
-    for(std::size_t i = 0; i < system.number_of_vertices; ++i)
-      if(!local_newton_step(state, i, options.preserve_bijectivity)) ++report.rejected_moves;
+    std::size_t moved = 0;
+    for(std::size_t i = 0; i < system.number_of_vertices; ++i) {
+      if(local_newton_step(state, i, options.preserve_bijectivity)) ++moved;
+      else ++report.rejected_moves;
+    }
     ++report.sweeps;
     residual = state.refresh_sums();
     if(options.progress) options.progress("newton", report.sweeps, residual, state.invalid_faces());
+    // Stagnation: no vertex moved, or 1000 sweeps gained less than 1% in all.
+    history.push_back(residual);
+    if(moved == 0 || (history.size() > 1000 && residual > 0.99 * history[history.size() - 1001])) {
+      report.stagnated = true;
+      break;
+    }
   }
   report.residual = residual;
   report.converged = residual < options.tolerance && state.invalid_faces() == 0;

@@ -179,11 +179,20 @@ inline Disk_grower grow_disk(const std::vector<std::array<int, 3>>& triangles, c
 }
 
 // A face with two or three edges on the loop has all its vertices on the unit circle: flat on the equator.
-inline bool has_flat_face(const Disk_grower& disk, const std::vector<int>& opposite, std::size_t nf)
+// Any face with its three vertices on the loop is flat, even with fewer loop edges.
+inline bool has_flat_face(const Disk_grower& disk, const std::vector<std::array<int, 3>>& triangles,
+                          const std::vector<int>& opposite, std::size_t nv)
 {
+  const std::size_t nf = triangles.size();
   if(disk.size() == 0 || disk.size() >= nf) return true;
+  std::vector<char> on_loop(nv, 0);
   for(std::size_t f = 0; f < nf; ++f)
-    if(boundary_edges(disk, opposite, f) >= 2) return true;
+    for(int k = 0; k < 3; ++k)
+      if(disk.contains(static_cast<std::size_t>(opposite[3 * f + static_cast<std::size_t>(k)])) != disk.contains(f))
+        on_loop[static_cast<std::size_t>(triangles[f][k])] = on_loop[static_cast<std::size_t>(triangles[f][(k + 1) % 3])] = 1;
+  for(const auto& t : triangles)
+    if(on_loop[static_cast<std::size_t>(t[0])] && on_loop[static_cast<std::size_t>(t[1])] && on_loop[static_cast<std::size_t>(t[2])])
+      return true;
   return false;
 }
 
@@ -220,13 +229,13 @@ inline Two_disk_partition split_into_two_disks(const Sphere_system& system, int 
   }
 
   Disk_grower disk = grow_disk(triangles, opposite, nv, allowed, seed, target);
-  if(has_flat_face(disk, opposite, nf)) {
+  if(has_flat_face(disk, triangles, opposite, nv)) {
     // METIS' side was too small or thin to avoid a face with all vertices on the loop (tiny meshes): grow half
     // of the faces from successive seeds instead, keeping the first split without such a face.
     std::fill(allowed.begin(), allowed.end(), 1);
     for(std::size_t start = 0; start < std::min<std::size_t>(nf, 16); ++start) {
       disk = grow_disk(triangles, opposite, nv, allowed, start, nf / 2);
-      if(!has_flat_face(disk, opposite, nf)) break;
+      if(!has_flat_face(disk, triangles, opposite, nv)) break;
     }
   }
   // The loop: boundary edges of A, oriented as A's faces, so A lies on their left.
