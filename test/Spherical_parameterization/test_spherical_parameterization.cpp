@@ -4,6 +4,7 @@
 #include <CGAL/Spherical_parameterization/is_bijective_on_sphere.h>
 #include <CGAL/Spherical_parameterization/spherical_parameterize.h>
 
+#include <CGAL/Exact_predicates_exact_constructions_kernel.h>
 #include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
 #include <CGAL/IO/polygon_soup_io.h>
 #include <CGAL/Polygon_mesh_processing/IO/polygon_mesh_io.h>
@@ -13,6 +14,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
 #include <map>
@@ -383,7 +385,7 @@ TEST(GaussSeidel, StopsWhenTheResidualRises)
     SPI::Iteration_options options;
     options.tolerance = 0.;  // never converged: only the rule may stop it
     options.max_gauss_seidel_sweeps = 100000;
-    options.progress = [&](const char*, std::size_t, double residual, std::size_t) { history.push_back(residual); };
+    options.progress = [&](const char*, std::size_t, double residual, std::size_t) { history.push_back(residual); return true; };
     const SPI::Iteration_report report = SPI::projected_gauss_seidel(state, options, SPI::Stopwatch());
     ASSERT_GE(history.size(), 2u) << file;
     EXPECT_LT(report.sweeps, options.max_gauss_seidel_sweeps) << file;
@@ -543,6 +545,136 @@ TEST(SphericalParameterize, TinyMeshes)
     EXPECT_EQ(r.status, SP::Error_code::OK) << r.message;
     EXPECT_TRUE(SP::is_bijective_on_sphere(m, sphere));
   }
+}
+
+// Every face split at its centre: the centres are pairwise non-adjacent and outnumber the other vertices, so the
+// connectivity is not inscribable (the triakis tetrahedron is the tetrahedron's case, with equal numbers).
+Arrays split_faces_at_centres(const Arrays& a, double lift)
+{
+  Arrays split;
+  split.points = a.points;
+  for(const auto& f : a.faces) {
+    const Point& p = a.points[f[0]]; const Point& q = a.points[f[1]]; const Point& r = a.points[f[2]];
+    const Kernel::Vector_3 normal = CGAL::cross_product(q - p, r - p);
+    const Point centre = CGAL::centroid(p, q, r) + lift * normal / std::sqrt(normal.squared_length()) *
+                                                        std::sqrt(std::sqrt(normal.squared_length()));
+    const std::size_t c = split.points.size();
+    split.points.push_back(centre);
+    split.faces.push_back({f[0], f[1], c});
+    split.faces.push_back({f[1], f[2], c});
+    split.faces.push_back({f[2], f[0], c});
+  }
+  return split;
+}
+
+Arrays arrays_from_file(const std::string& path)
+{
+  Arrays a;
+  EXPECT_TRUE(CGAL::IO::read_polygon_soup(path, a.points, a.faces)) << path;
+  return a;
+}
+
+TEST(NoBalancedSolution, InscribabilityProofOnlyWhereItHolds)
+{
+  for(const Arrays& a : {tetrahedron(), octahedron(), cube(), icosahedron()}) {
+    const SPI::Mesh_arrays arrays = arrays_of(to_mesh(a));
+    EXPECT_FALSE(SPI::check_inscribability(system_of(arrays)).proven_not_inscribable) << a.points.size() << " vertices";
+  }
+  for(const std::string file : {cgal_data + "/triceratops.off", shared_meshes + "/oscad_pcbvicebar.off", shared_meshes + "/npm_bunny.off"}) {
+    const SPI::Mesh_arrays arrays = arrays_of(read_mesh(file));
+    EXPECT_FALSE(SPI::check_inscribability(system_of(arrays)).proven_not_inscribable) << file;
+  }
+  const SPI::Inscribability_check triakis = SPI::check_inscribability(system_of(arrays_of(to_mesh(split_faces_at_centres(tetrahedron(), 0.3)))));
+  EXPECT_TRUE(triakis.proven_not_inscribable);
+  EXPECT_EQ(triakis.independent_set_size, 4u);
+  EXPECT_TRUE(triakis.edge_outside_set);
+}
+
+TEST(NoBalancedSolution, ClearStatusAndCertifiedFallbackMap)
+{
+  const Arrays triakis = split_faces_at_centres(tetrahedron(), 0.3);
+  const Arrays split_bunny = split_faces_at_centres(arrays_from_file(shared_meshes + "/npm_bunny.off"), 0.);
+  const Arrays split_triceratops = split_faces_at_centres(arrays_from_file(cgal_data + "/triceratops.off"), 0.1);
+  for(const Arrays* a : {&triakis, &split_bunny, &split_triceratops}) {
+    const Mesh mesh = to_mesh(*a);
+    ASSERT_TRUE(SP::check_input(mesh)) << SP::check_input(mesh).message;
+    for(SP::Weighting weighting : {SP::Weighting::UNIFORM, SP::Weighting::MEAN_VALUE}) {
+      std::map<Mesh::Vertex_index, Point> positions;
+      auto sphere = boost::make_assoc_property_map(positions);
+      const SP::Result result = SP::spherical_parameterize(mesh, sphere, SP::parameters::weighting(weighting));
+      EXPECT_EQ(result.status, SP::Error_code::NO_BALANCED_SOLUTION) << a->points.size() << " vertices: " << result.message;
+      EXPECT_NE(result.message.find("not inscribable"), std::string::npos) << result.message;
+      // Bounded: no iteration is spent on equations without a bijective solution when the initial guess is
+      // bijective; otherwise a capped number of bijectivity-preserving sweeps repairs it.
+      std::cout << a->points.size() << " vertices: initial non-positive faces " << result.initial_flipped_faces << ", sweeps "
+                << result.gauss_seidel.iterations << " + " << result.newton.iterations << ", " << result.total_seconds << " s\n";
+      if(result.initial_flipped_faces == 0) EXPECT_EQ(result.gauss_seidel.iterations + result.newton.iterations, 0u);
+      EXPECT_LE(result.gauss_seidel.iterations + result.newton.iterations, 200u);
+      ASSERT_EQ(positions.size(), mesh.number_of_vertices());
+      const SP::Sphere_map_certificate certificate = SP::certify_sphere_map(mesh, sphere);
+      EXPECT_TRUE(certificate.bijective) << a->points.size() << " vertices, " << certificate.flipped_faces << " flips";
+      EXPECT_EQ(result.bijective, certificate.bijective);
+    }
+  }
+}
+
+TEST(Progress, CallbackFollowsTheStagesAndCancels)
+{
+  const Mesh mesh = read_mesh(cgal_data + "/triceratops.off");
+  std::vector<std::string> stages;
+  std::vector<double> seconds;
+  auto follow = [&](const SP::Progress& progress) {
+    stages.push_back(progress.stage);
+    seconds.push_back(progress.seconds);
+    EXPECT_TRUE(std::isfinite(progress.residual));
+    return true;
+  };
+  std::map<Mesh::Vertex_index, Point> positions;
+  const SP::Result result = SP::spherical_parameterize(mesh, boost::make_assoc_property_map(positions),
+                                                       SP::parameters::progress_callback(follow));
+  ASSERT_EQ(result.status, SP::Error_code::OK) << result.message;
+  ASSERT_FALSE(stages.empty());
+  EXPECT_EQ(stages.front(), "initial guess");
+  EXPECT_EQ(std::count(stages.begin(), stages.end(), "gauss-seidel"), long(result.gauss_seidel.iterations));
+  EXPECT_EQ(std::count(stages.begin(), stages.end(), "global newton"), long(result.newton.iterations));
+  EXPECT_TRUE(std::is_sorted(seconds.begin(), seconds.end()));
+
+  // Cancel in stage 2 after three sweeps, and right after stage 1.
+  for(std::size_t allowed : {3u, 0u}) {
+    std::size_t calls = 0;
+    auto cancel = [&](const SP::Progress& progress) { return progress.iteration == 0 || ++calls < allowed; };
+    auto cancel_at_once = [](const SP::Progress&) { return false; };
+    positions.clear();
+    const SP::Result cancelled =
+        allowed > 0 ? SP::spherical_parameterize(mesh, boost::make_assoc_property_map(positions), SP::parameters::progress_callback(cancel))
+                    : SP::spherical_parameterize(mesh, boost::make_assoc_property_map(positions), SP::parameters::progress_callback(cancel_at_once));
+    EXPECT_EQ(cancelled.status, SP::Error_code::CANCELLED);
+    EXPECT_EQ(cancelled.gauss_seidel.iterations, allowed);
+    EXPECT_EQ(cancelled.newton.iterations, 0u);
+    ASSERT_EQ(positions.size(), mesh.number_of_vertices());
+    for(const auto& entry : positions) EXPECT_NEAR(std::sqrt(CGAL::to_double((entry.second - CGAL::ORIGIN).squared_length())), 1., 1e-12);
+  }
+}
+
+// Exact points are read through the geometric traits and give the same sphere as their double conversion.
+TEST(SphericalParameterize, ExactKernelPoints)
+{
+  using Exact_mesh = CGAL::Surface_mesh<CGAL::Epeck::Point_3>;
+  const Mesh mesh = read_mesh(shared_meshes + "/trimesh_fuze.off");
+  Exact_mesh exact;
+  for(auto v : mesh.vertices()) exact.add_vertex(CGAL::Epeck::Point_3(mesh.point(v).x(), mesh.point(v).y(), mesh.point(v).z()));
+  for(auto f : mesh.faces()) {
+    std::vector<Exact_mesh::Vertex_index> vs;
+    for(auto v : vertices_around_face(mesh.halfedge(f), mesh)) vs.push_back(Exact_mesh::Vertex_index(std::size_t(v)));
+    exact.add_face(vs);
+  }
+  std::map<Mesh::Vertex_index, Point> expected;
+  std::map<Exact_mesh::Vertex_index, Point> obtained;
+  ASSERT_EQ(SP::spherical_parameterize(mesh, boost::make_assoc_property_map(expected)).status, SP::Error_code::OK);
+  const SP::Result result = SP::spherical_parameterize(exact, boost::make_assoc_property_map(obtained),
+                                                       CGAL::parameters::geom_traits(CGAL::Epeck()));
+  ASSERT_EQ(result.status, SP::Error_code::OK) << result.message;
+  for(auto v : mesh.vertices()) EXPECT_EQ(expected[v], obtained[Exact_mesh::Vertex_index(std::size_t(v))]);
 }
 
 TEST(SphericalParameterize, ReportsInputErrorsAndWritesNothing)

@@ -25,7 +25,9 @@ enum class Error_code {
   PARTITION_FAILED,          ///< The mesh could not be split into two disks (stage 1).
   DISK_EMBEDDING_FAILED,     ///< The planar disk embedding of a half failed (stage 1).
   NOT_CONVERGED,             ///< The iteration caps or the time budget were reached before `Res < tolerance`.
-  NOT_BIJECTIVE              ///< `Res < tolerance` but some spherical triangles are not positively oriented.
+  NOT_BIJECTIVE,             ///< `Res < tolerance` but some spherical triangles are not positively oriented.
+  NO_BALANCED_SOLUTION,      ///< The connectivity is not inscribable: no bijective solution exists for positive weights.
+  CANCELLED                  ///< The `progress_callback` asked to stop.
 };
 
 /// \ingroup PkgSphericalParameterizationRef
@@ -50,6 +52,9 @@ inline const char* get_error_message(Error_code code)
     case Error_code::DISK_EMBEDDING_FAILED: return "The planar embedding of a half of the mesh failed";
     case Error_code::NOT_CONVERGED: return "Not converged within the iteration caps or the time budget";
     case Error_code::NOT_BIJECTIVE: return "The residual is below the tolerance but the map is not bijective";
+    case Error_code::NO_BALANCED_SOLUTION:
+      return "The connectivity is not inscribable: the balance equations have no bijective solution for positive weights";
+    case Error_code::CANCELLED: return "Cancelled by the progress callback";
   }
   return "Unknown error code";
 }
@@ -76,6 +81,8 @@ inline const char* get_error_name(Error_code code)
     case Error_code::DISK_EMBEDDING_FAILED: return "DISK_EMBEDDING_FAILED";
     case Error_code::NOT_CONVERGED: return "NOT_CONVERGED";
     case Error_code::NOT_BIJECTIVE: return "NOT_BIJECTIVE";
+    case Error_code::NO_BALANCED_SOLUTION: return "NO_BALANCED_SOLUTION";
+    case Error_code::CANCELLED: return "CANCELLED";
   }
   return "UNKNOWN";
 }

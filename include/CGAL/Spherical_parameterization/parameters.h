@@ -32,6 +32,16 @@ enum class Nonlinear_solver {
   LOCAL_NEWTON   ///< The paper's local Newton iteration on (theta, phi) with line search (Section 3.3).
 };
 
+/// \ingroup PkgSphericalParameterizationRef
+/// What the `progress_callback` named parameter receives, at the end of every stage and after every iteration.
+struct Progress {
+  const char* stage = "";          ///< "initial guess", "gauss-seidel", "global newton" or "local newton".
+  std::size_t iteration = 0;       ///< Iterations of that stage so far (0 for the initial guess).
+  double residual = -1.;           ///< The paper's `Res` now.
+  std::size_t non_positive_faces = 0; ///< Spherical triangles not positively oriented now.
+  double seconds = 0.;             ///< Since the call started.
+};
+
 namespace internal_np {
 // Tag types of the package's own named parameters.
 enum weighting_t { weighting };
@@ -43,6 +53,7 @@ enum max_seconds_t { max_seconds };
 enum preserve_bijectivity_t { preserve_bijectivity };
 enum nonlinear_solver_t { nonlinear_solver };
 enum metis_seed_t { metis_seed };
+enum progress_callback_t { progress_callback };
 } // namespace internal_np
 
 namespace parameters {
@@ -84,6 +95,10 @@ CGAL_SPHERICAL_PARAMETERIZATION_NAMED_PARAMETER(preserve_bijectivity)
 CGAL_SPHERICAL_PARAMETERIZATION_NAMED_PARAMETER(nonlinear_solver)
 /// Seed of METIS' randomized separator (default 0): the same seed gives bitwise identical output.
 CGAL_SPHERICAL_PARAMETERIZATION_NAMED_PARAMETER(metis_seed)
+
+/// A callable `bool(const Progress&)`, called at the end of every stage and after every iteration; returning
+/// `false` cancels the run, which then ends with `Error_code::CANCELLED` and the current (best) iterate.
+CGAL_SPHERICAL_PARAMETERIZATION_NAMED_PARAMETER(progress_callback)
 
 #undef CGAL_SPHERICAL_PARAMETERIZATION_NAMED_PARAMETER
 

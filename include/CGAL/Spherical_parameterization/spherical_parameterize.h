@@ -11,6 +11,7 @@
 #include <CGAL/Spherical_parameterization/internal/Sphere_system.h>
 #include <CGAL/Spherical_parameterization/internal/disk_embedding.h>
 #include <CGAL/Spherical_parameterization/internal/global_newton.h>
+#include <CGAL/Spherical_parameterization/internal/inscribability.h>
 #include <CGAL/Spherical_parameterization/internal/sphere_iterations.h>
 #include <CGAL/Spherical_parameterization/internal/sphere_orientation.h>
 #include <CGAL/Spherical_parameterization/internal/two_disk_partition.h>
@@ -27,7 +28,9 @@
 
 #include <algorithm>
 #include <cstdint>
+#include <functional>
 #include <iostream>
+#include <memory>
 #include <sstream>
 #include <string>
 #include <type_traits>
@@ -60,6 +63,8 @@ struct Pipeline_options {
   const idx_t* metis_options = nullptr;  // METIS_NOPTIONS values, or nullptr for METIS' defaults and metis_seed
   bool verbose = false;
   Iteration_options iterations;
+  // Stage-level progress (the user's callback and the verbose printing); false cancels.
+  std::function<bool(const Progress&)> report;
 };
 
 // Stage 1 for one weighting: two disks, Moebius inversion and inverse stereographic projection.
@@ -133,12 +138,38 @@ Result run_pipeline(const Mesh_arrays& mesh, Sphere_system& system, const Pipeli
     std::cerr << "stage 1: separator " << result.separator_size << " vertices, loop " << result.cut_loop_length
               << " vertices, Res " << result.initial_guess.residual << ", non-positive faces " << start.flipped_faces
               << ", " << result.initial_guess.seconds << " s\n";
+  bool cancelled = false;
+  if(options.report) {
+    Progress progress;
+    progress.stage = "initial guess";
+    progress.residual = result.initial_guess.residual;
+    progress.non_positive_faces = start.flipped_faces;
+    progress.seconds = total.seconds();
+    cancelled = !options.report(progress);
+  }
+
+  // A non-inscribable connectivity has no bijective balanced solution for positive weights: iterating cannot
+  // succeed, so the initial guess (bijective by construction in all but rare cases) is the answer; a few
+  // bijectivity-preserving iterations only serve to repair it if some of its triangles are not positive.
+  bool positive_weights = true;
+  for(double w : system.weights) positive_weights = positive_weights && w > 0.;
+  const Inscribability_check inscribability = check_inscribability(system);
+  const bool no_balanced_solution = positive_weights && inscribability.proven_not_inscribable;
+  Iteration_options iteration_options = options.iterations;
+  if(no_balanced_solution) {
+    iteration_options.max_gauss_seidel_sweeps = start.flipped_faces == 0 ? 0 : std::min<std::size_t>(iteration_options.max_gauss_seidel_sweeps, 100);
+    iteration_options.max_newton_sweeps = start.flipped_faces == 0 ? 0 : std::min<std::size_t>(iteration_options.max_newton_sweeps, 100);
+    iteration_options.tolerance = 0.;  // stop at the caps; no residual is the goal here
+  }
 
   // Stages 2 and 3.
   Sphere_state state(system, x);
   Stopwatch iterations_clock;
   stage = Stopwatch();
-  const Iteration_report gauss_seidel = projected_gauss_seidel(state, options.iterations, iterations_clock);
+  Iteration_report gauss_seidel;
+  if(!cancelled) gauss_seidel = projected_gauss_seidel(state, iteration_options, iterations_clock);
+  else gauss_seidel.residual = result.initial_guess.residual;
+  cancelled = cancelled || gauss_seidel.cancelled;
   result.gauss_seidel.iterations = gauss_seidel.sweeps;
   result.gauss_seidel.residual = gauss_seidel.residual;
   result.gauss_seidel.seconds = stage.seconds();
@@ -148,11 +179,12 @@ Result run_pipeline(const Mesh_arrays& mesh, Sphere_system& system, const Pipeli
 
   stage = Stopwatch();
   Iteration_report newton;
-  if(!gauss_seidel.converged && !gauss_seidel.out_of_time)
+  if(!gauss_seidel.converged && !gauss_seidel.out_of_time && !cancelled && iteration_options.max_newton_sweeps > 0)
     newton = options.nonlinear_solver == Nonlinear_solver::LOCAL_NEWTON
-                 ? local_newton(state, options.iterations, iterations_clock)
-                 : global_newton(state, options.iterations, iterations_clock);
+                 ? local_newton(state, iteration_options, iterations_clock)
+                 : global_newton(state, iteration_options, iterations_clock);
   else newton.residual = gauss_seidel.residual;
+  cancelled = cancelled || newton.cancelled;
   result.newton.iterations = newton.sweeps;
   result.newton.residual = newton.residual;
   result.newton.seconds = stage.seconds();
@@ -171,8 +203,19 @@ Result run_pipeline(const Mesh_arrays& mesh, Sphere_system& system, const Pipeli
   result.bijective = certificate.bijective;
   const bool converged = result.residual < options.iterations.tolerance;
   result.status = !converged ? Error_code::NOT_CONVERGED : (certificate.bijective ? Error_code::OK : Error_code::NOT_BIJECTIVE);
+  if(cancelled) result.status = Error_code::CANCELLED;
+  if(no_balanced_solution) result.status = Error_code::NO_BALANCED_SOLUTION;
   result.message = get_error_message(result.status);
-  if(result.status != Error_code::OK) {
+  if(no_balanced_solution) {
+    std::ostringstream details;
+    details << " (proof: " << inscribability.independent_set_size << " of the " << system.number_of_vertices
+            << " vertices are pairwise non-adjacent" << (2 * inscribability.independent_set_size == system.number_of_vertices
+                                                             ? " and two of the others are adjacent" : "")
+            << "). The map returned is the initial guess (two Tutte disks, "
+            << "Moebius inversion, stereographic projection)" << (certificate.bijective ? ", certified bijective" : ", NOT bijective: "
+            + std::to_string(certificate.flipped_faces) + " flipped faces") << ", not a balanced one";
+    result.message += details.str();
+  } else if(result.status != Error_code::OK) {
     std::ostringstream details;
     details << " (Res " << result.residual << ", " << result.flipped_faces << " flipped faces";
     if(newton.stagnated)
@@ -208,6 +251,9 @@ Result run_pipeline(const Mesh_arrays& mesh, Sphere_system& system, const Pipeli
 /// \cgalNamedParamsBegin
 ///   \cgalParamNBegin{vertex_point_map} \cgalParamDescription{the points of the vertices}
 ///     \cgalParamDefault{`boost::get(CGAL::vertex_point, tm)`} \cgalParamNEnd
+///   \cgalParamNBegin{geom_traits} \cgalParamDescription{a model of `Kernel`: its `Compute_x_3`, `Compute_y_3` and
+///     `Compute_z_3` read the points (converted to `double` with `CGAL::to_double()`), so exact kernels are accepted}
+///     \cgalParamDefault{the kernel of the point type of `vertex_point_map`} \cgalParamNEnd
 ///   \cgalParamNBegin{vertex_index_map} \cgalParamDescription{indices `0..num_vertices(tm)-1`}
 ///     \cgalParamDefault{an automatically indexed internal map} \cgalParamNEnd
 ///   \cgalParamNBegin{weighting} \cgalParamDescription{the weights `w_ij` (`Weighting`)}
@@ -227,6 +273,9 @@ Result run_pipeline(const Mesh_arrays& mesh, Sphere_system& system, const Pipeli
 ///     (CGAL's tag); overrides `metis_seed`} \cgalParamDefault{METIS' defaults with `metis_seed`} \cgalParamNEnd
 ///   \cgalParamNBegin{sparse_linear_solver} \cgalParamDescription{a model of `SparseLinearAlgebraTraits_d` for the disk stage,
 ///     e.g. `AMG_solver_traits`} \cgalParamDefault{`AMG_solver_traits`} \cgalParamNEnd
+///   \cgalParamNBegin{progress_callback} \cgalParamDescription{a callable `bool(const Progress&)` called after stage 1 and
+///     after every iteration; returning `false` cancels (status `Error_code::CANCELLED`, the current iterate is written)}
+///     \cgalParamDefault{none} \cgalParamNEnd
 ///   \cgalParamNBegin{verbose} \cgalParamDescription{print the figures of each stage to `std::cerr`} \cgalParamDefault{`false`} \cgalParamNEnd
 /// \cgalNamedParamsEnd
 ///
@@ -246,7 +295,17 @@ Result spherical_parameterize(const TriangleMesh& tm, VertexSphereMap vsm,
   auto vpm = choose_parameter(get_parameter(np, CGAL::internal_np::vertex_point), get_const_property_map(CGAL::vertex_point, tm));
   auto vim = CGAL::get_initialized_vertex_index_map(tm, np);
 
-  const internal::Mesh_arrays mesh = internal::read_face_graph(tm, vpm, vim);
+  // The geometric traits read the coordinates, so that any kernel's points (e.g. exact ones) are accepted.
+  using Geom_traits = typename CGAL::GetGeomTraits<TriangleMesh, NamedParameters>::type;
+  const Geom_traits gt = choose_parameter<Geom_traits>(get_parameter(np, CGAL::internal_np::geom_traits));
+  const auto compute_x = gt.compute_x_3_object();
+  const auto compute_y = gt.compute_y_3_object();
+  const auto compute_z = gt.compute_z_3_object();
+  const internal::Mesh_arrays mesh = internal::read_face_graph(tm, vpm, vim, [&](const auto& p, double& x, double& y, double& z) {
+    x = CGAL::to_double(compute_x(p));
+    y = CGAL::to_double(compute_y(p));
+    z = CGAL::to_double(compute_z(p));
+  });
   const Input_check check = internal::check_mesh_arrays(mesh);
   if(!check) {
     Result result;
@@ -272,14 +331,30 @@ Result spherical_parameterize(const TriangleMesh& tm, VertexSphereMap vsm,
   options.iterations.max_newton_sweeps = choose_parameter(get_parameter(np, internal_np::max_newton_sweeps), std::size_t(200000));
   options.iterations.max_seconds = choose_parameter(get_parameter(np, internal_np::max_seconds), -1.);
   options.iterations.preserve_bijectivity = choose_parameter(get_parameter(np, internal_np::preserve_bijectivity), true);
-  if(options.verbose) {
-    double last_print = -1.;
-    options.iterations.progress = [clock, last_print](const char* stage, std::size_t sweep, double residual, std::size_t invalid) mutable {
-      const double now = clock.seconds();
-      if(now - last_print < 1.) return;
-      last_print = now;
-      std::cerr << "  " << stage << " sweep " << sweep << ": Res " << residual << ", non-positive faces " << invalid
-                << ", " << now << " s\n";
+  // Progress: the user's callback sees every stage end and every iteration; verbose prints at most once a second.
+  std::function<bool(const Progress&)> user_callback;
+  if constexpr(!is_default_parameter<NamedParameters, internal_np::progress_callback_t>::value)
+    user_callback = get_parameter(np, internal_np::progress_callback);
+  if(user_callback || options.verbose) {
+    const bool verbose = options.verbose;
+    auto last_print = std::make_shared<double>(-1.);
+    options.report = [user_callback, verbose, last_print](const Progress& progress) {
+      if(verbose && progress.iteration > 0 && progress.seconds - *last_print >= 1.) {
+        *last_print = progress.seconds;
+        std::cerr << "  " << progress.stage << " iteration " << progress.iteration << ": Res " << progress.residual
+                  << ", non-positive faces " << progress.non_positive_faces << ", " << progress.seconds << " s\n";
+      }
+      return !user_callback || user_callback(progress);
+    };
+    options.iterations.progress = [report = options.report, clock](const char* stage, std::size_t sweep, double residual,
+                                                                    std::size_t invalid) {
+      Progress progress;
+      progress.stage = stage;
+      progress.iteration = sweep;
+      progress.residual = residual;
+      progress.non_positive_faces = invalid;
+      progress.seconds = clock.seconds();
+      return report(progress);
     };
   }
 

@@ -46,16 +46,17 @@ inline bool make_triangles(Mesh_arrays& mesh)
   return true;
 }
 
-template <typename FaceGraph, typename VertexPointMap, typename VertexIndexMap>
-Mesh_arrays read_face_graph(const FaceGraph& tm, VertexPointMap vpm, VertexIndexMap vim)
+// Reads the coordinates through `coordinates(p, x, y, z)` (the geometric traits' functors, by default p.x()...).
+template <typename FaceGraph, typename VertexPointMap, typename VertexIndexMap, typename Coordinates>
+Mesh_arrays read_face_graph(const FaceGraph& tm, VertexPointMap vpm, VertexIndexMap vim, const Coordinates& coordinates)
 {
   Mesh_arrays mesh;
   const std::size_t nv = static_cast<std::size_t>(num_vertices(tm));
   mesh.points.resize(nv);
   for(auto v : vertices(tm)) {
-    const auto& p = get(vpm, v);
-    mesh.points[static_cast<std::size_t>(get(vim, v))] =
-        Vector3(CGAL::to_double(p.x()), CGAL::to_double(p.y()), CGAL::to_double(p.z()));
+    double x, y, z;
+    coordinates(get(vpm, v), x, y, z);
+    mesh.points[static_cast<std::size_t>(get(vim, v))] = Vector3(x, y, z);
   }
   mesh.polygons.reserve(static_cast<std::size_t>(num_faces(tm)));
   for(auto f : faces(tm)) {
@@ -66,6 +67,16 @@ Mesh_arrays read_face_graph(const FaceGraph& tm, VertexPointMap vpm, VertexIndex
   }
   make_triangles(mesh);
   return mesh;
+}
+
+template <typename FaceGraph, typename VertexPointMap, typename VertexIndexMap>
+Mesh_arrays read_face_graph(const FaceGraph& tm, VertexPointMap vpm, VertexIndexMap vim)
+{
+  return read_face_graph(tm, vpm, vim, [](const auto& p, double& x, double& y, double& z) {
+    x = CGAL::to_double(p.x());
+    y = CGAL::to_double(p.y());
+    z = CGAL::to_double(p.z());
+  });
 }
 
 } // namespace internal

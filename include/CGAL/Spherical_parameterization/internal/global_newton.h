@@ -16,7 +16,10 @@
 #include <Eigen/Sparse>
 #include <Eigen/SparseLU>
 #include <Eigen/SparseCholesky>
+#include <Eigen/MetisSupport>
 
+#include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstddef>
 #include <vector>
@@ -47,9 +50,9 @@ public:
     t2_.resize(n);
     for(std::size_t i = 0; i < n; ++i) tangent_frame(x[i], t1_[i], t2_[i]);
 
+    if(jacobian_.rows() != Eigen::Index(2 * n)) build_pattern();
     Eigen::VectorXd rhs(2 * n);
-    triplets_.clear();
-    triplets_.reserve(4 * (n + system_.neighbors.size()));
+    double* values = jacobian_.valuePtr();
     for(std::size_t i = 0; i < n; ++i) {
       const double scale = system_.row_sums[i];
       const Vector3 s = scale * state.sum(i);
@@ -57,19 +60,22 @@ public:
       rhs[2 * i] = -dot(t1_[i], s);
       rhs[2 * i + 1] = -dot(t2_[i], s);
       const double diagonal = -alpha * (1. + damping_);
-      triplets_.emplace_back(int(2 * i), int(2 * i), diagonal);
-      triplets_.emplace_back(int(2 * i + 1), int(2 * i + 1), diagonal);
+      const std::array<std::size_t, 4>& d = diagonal_slots_[i];
+      values[d[0]] = diagonal;
+      values[d[1]] = 0.;
+      values[d[2]] = 0.;
+      values[d[3]] = diagonal;
       for(std::size_t k = system_.offsets[i]; k < system_.offsets[i + 1]; ++k) {
         const std::size_t j = static_cast<std::size_t>(system_.neighbors[k]);
         const double w = system_.weights[k] * scale;
-        triplets_.emplace_back(int(2 * i), int(2 * j), w * dot(t1_[i], t1_[j]));
-        triplets_.emplace_back(int(2 * i), int(2 * j + 1), w * dot(t1_[i], t2_[j]));
-        triplets_.emplace_back(int(2 * i + 1), int(2 * j), w * dot(t2_[i], t1_[j]));
-        triplets_.emplace_back(int(2 * i + 1), int(2 * j + 1), w * dot(t2_[i], t2_[j]));
+        const std::array<std::size_t, 4>& b = block_slots_[k];
+        values[b[0]] = w * dot(t1_[i], t1_[j]);
+        values[b[1]] = w * dot(t1_[i], t2_[j]);
+        values[b[2]] = w * dot(t2_[i], t1_[j]);
+        values[b[3]] = w * dot(t2_[i], t2_[j]);
       }
     }
-    Eigen::SparseMatrix<double> jacobian(int(2 * n), int(2 * n));
-    jacobian.setFromTriplets(triplets_.begin(), triplets_.end());
+    const Eigen::SparseMatrix<double>& jacobian = jacobian_;
 
     // Symmetric weights: plain Newton. Otherwise the rotations are not an exact null space of the equations,
     // and Newton's step blows up along them: take Levenberg-Marquardt steps (J^T J + mu I) d = J^T rhs instead.
@@ -145,7 +151,9 @@ private:
   bool solve(const Eigen::SparseMatrix<double>& jacobian, const Eigen::VectorXd& rhs, Eigen::VectorXd& delta)
   {
     if(system_.symmetric) {
-      ldlt_.compute(jacobian);
+      // The pattern never changes: order and analyse once, factorize at every step.
+      if(!ldlt_analyzed_) { ldlt_.analyzePattern(jacobian); ldlt_analyzed_ = true; }
+      ldlt_.factorize(jacobian);
       if(ldlt_.info() == Eigen::Success) {
         delta = ldlt_.solve(rhs);
         if(ldlt_.info() == Eigen::Success && delta.allFinite()) return true;
@@ -157,13 +165,49 @@ private:
     return lu_.info() == Eigen::Success && delta.allFinite();
   }
 
+  // The Jacobian's pattern (2x2 blocks of the vertex adjacency plus the diagonal) and, for every block, where its
+  // four values sit in the compressed storage, so that each step writes values in place without sorting.
+  void build_pattern()
+  {
+    const std::size_t n = system_.number_of_vertices;
+    std::vector<Eigen::Triplet<double>> triplets;
+    triplets.reserve(4 * (n + system_.neighbors.size()));
+    auto add_block = [&](std::size_t i, std::size_t j) {
+      for(int a = 0; a < 2; ++a)
+        for(int b = 0; b < 2; ++b) triplets.emplace_back(int(2 * i + a), int(2 * j + b), 0.);
+    };
+    for(std::size_t i = 0; i < n; ++i) {
+      add_block(i, i);
+      for(std::size_t k = system_.offsets[i]; k < system_.offsets[i + 1]; ++k) add_block(i, std::size_t(system_.neighbors[k]));
+    }
+    jacobian_.resize(int(2 * n), int(2 * n));
+    jacobian_.setFromTriplets(triplets.begin(), triplets.end());
+    jacobian_.makeCompressed();
+    auto slot = [&](std::size_t row, std::size_t column) {
+      const int* begin = jacobian_.innerIndexPtr() + jacobian_.outerIndexPtr()[column];
+      const int* end = jacobian_.innerIndexPtr() + jacobian_.outerIndexPtr()[column + 1];
+      return static_cast<std::size_t>(std::lower_bound(begin, end, int(row)) - jacobian_.innerIndexPtr());
+    };
+    auto block = [&](std::size_t i, std::size_t j) {
+      return std::array<std::size_t, 4>{slot(2 * i, 2 * j), slot(2 * i, 2 * j + 1), slot(2 * i + 1, 2 * j), slot(2 * i + 1, 2 * j + 1)};
+    };
+    diagonal_slots_.resize(n);
+    block_slots_.resize(system_.neighbors.size());
+    for(std::size_t i = 0; i < n; ++i) {
+      diagonal_slots_[i] = block(i, i);
+      for(std::size_t k = system_.offsets[i]; k < system_.offsets[i + 1]; ++k) block_slots_[k] = block(i, std::size_t(system_.neighbors[k]));
+    }
+  }
+
   const Sphere_system& system_;
   bool preserve_bijectivity_;
+  Eigen::SparseMatrix<double> jacobian_;
+  std::vector<std::array<std::size_t, 4>> diagonal_slots_, block_slots_;
+  bool ldlt_analyzed_ = false;
   double marquardt_ = 1e-6;  // relative Levenberg-Marquardt shift (non-symmetric weights)
   double damping_ = 1e-10;  // relative diagonal shift: keeps the rotations from blowing up the step
   std::vector<Vector3> t1_, t2_;
-  std::vector<Eigen::Triplet<double>> triplets_;
-  Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>> ldlt_;
+  Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>, Eigen::Lower, Eigen::MetisOrdering<int>> ldlt_;
   Eigen::SparseLU<Eigen::SparseMatrix<double>, Eigen::COLAMDOrdering<int>> lu_;
 };
 
@@ -192,7 +236,10 @@ inline Iteration_report global_newton(Sphere_state& state, const Iteration_optio
       residual = state.refresh_sums();
     }
     ++report.sweeps;
-    if(options.progress) options.progress("global newton", report.sweeps, residual, state.invalid_faces());
+    if(options.progress && !options.progress("global newton", report.sweeps, residual, state.invalid_faces())) {
+      report.cancelled = true;
+      break;
+    }
     history.push_back(residual);
     if(history.size() > 200 && residual > 0.99 * history[history.size() - 201]) { report.stagnated = true; break; }
   }

@@ -29,7 +29,8 @@ struct Iteration_options {
   std::size_t max_newton_sweeps = 200000;
   double max_seconds = -1.;           // negative: no budget
   bool preserve_bijectivity = true;
-  std::function<void(const char* stage, std::size_t sweep, double residual, std::size_t invalid_faces)> progress;
+  // Called after every sweep; returning false cancels the iterations.
+  std::function<bool(const char* stage, std::size_t sweep, double residual, std::size_t invalid_faces)> progress;
 };
 
 struct Iteration_report {
@@ -38,6 +39,7 @@ struct Iteration_report {
   bool converged = false;
   bool out_of_time = false;
   bool stagnated = false;       // the residual stopped decreasing before the tolerance
+  bool cancelled = false;       // the progress callback asked to stop
   std::size_t rejected_moves = 0;
 };
 
@@ -59,6 +61,7 @@ public:
   std::vector<Vector3>& positions() { return x_; }
   const Vector3& sum(std::size_t i) const { return s_[i]; }
   std::size_t invalid_faces() const { return invalid_faces_; }
+  bool face_is_positive(std::size_t f) const { return face_positive_[f] != 0; }
 
   // Recomputes every s_i (removes the drift of incremental updates) and returns the paper's Res.
   double refresh_sums()
@@ -179,7 +182,7 @@ inline Iteration_report projected_gauss_seidel(Sphere_state& state, const Iterat
     }
     ++report.sweeps;
     const double next = state.refresh_sums();
-    if(options.progress) options.progress("gauss-seidel", report.sweeps, next, state.invalid_faces());
+    if(options.progress && !options.progress("gauss-seidel", report.sweeps, next, state.invalid_faces())) report.cancelled = true;
     if(!(next < residual)) {
       // Res grew: return to the previous iterate (faces flags follow the positions).
       for(std::size_t i = 0; i < system.number_of_vertices; ++i)
@@ -189,6 +192,7 @@ inline Iteration_report projected_gauss_seidel(Sphere_state& state, const Iterat
     }
     residual = next;
     if(residual < options.tolerance && state.invalid_faces() == 0) { report.converged = true; break; }
+    if(report.cancelled) break;
   }
   report.residual = residual;
   return report;
@@ -274,7 +278,10 @@ inline Iteration_report local_newton(Sphere_state& state, const Iteration_option
     }
     ++report.sweeps;
     residual = state.refresh_sums();
-    if(options.progress) options.progress("newton", report.sweeps, residual, state.invalid_faces());
+    if(options.progress && !options.progress("local newton", report.sweeps, residual, state.invalid_faces())) {
+      report.cancelled = true;
+      break;
+    }
     // Stagnation: no vertex moved, or 1000 sweeps gained less than 1% in all.
     history.push_back(residual);
     if(moved == 0 || (history.size() > 1000 && residual > 0.99 * history[history.size() - 1001])) {
