@@ -18,6 +18,7 @@
 #include <cmath>
 #include <limits>
 #include <map>
+#include <random>
 #include <set>
 #include <string>
 #include <vector>
@@ -444,6 +445,157 @@ TEST(GlobalNewton, LowersTheResidualAndKeepsEveryTrianglePositive)
   }
   EXPECT_LT(residual, start);
   EXPECT_EQ(SPI::certify(system.triangles, x).flipped_faces, 0u);
+}
+
+TEST(Mobius, BoostIsTheFlowOfTheBoostField)
+{
+  const SPI::Vector3 a(0.36, -0.48, 0.8);  // a unit axis
+  std::mt19937 random(7);
+  std::uniform_real_distribution<double> uniform(-1., 1.);
+  for(int k = 0; k < 200; ++k) {
+    SPI::Vector3 x(uniform(random), uniform(random), uniform(random));
+    x *= 1. / SPI::length(x);
+    // On the sphere, and a group along one axis: boost(boost(x, s a), t a) = boost(x, (s + t) a).
+    const SPI::Vector3 y = SPI::apply_boost(SPI::apply_boost(x, 0.7 * a), -0.2 * a);
+    const SPI::Vector3 z = SPI::apply_boost(x, 0.5 * a);
+    EXPECT_NEAR(SPI::length(y), 1., 1e-15);
+    EXPECT_NEAR(SPI::length(y - z), 0., 1e-14);
+    // Its derivative at 0 is the tangential part of the boost vector.
+    const double h = 1e-6;
+    const SPI::Vector3 derivative = (SPI::apply_boost(x, h * a) - SPI::apply_boost(x, -h * a)) * (0.5 / h);
+    EXPECT_NEAR(SPI::length(derivative - (a - SPI::dot(a, x) * x)), 0., 1e-8);
+  }
+  // A small triangle keeps its orientation.
+  const SPI::Vector3 p(1, 0, 0), q = SPI::Vector3(1, 1e-3, 0) * (1. / std::sqrt(1. + 1e-6)),
+                     r = SPI::Vector3(1, 0, 1e-3) * (1. / std::sqrt(1. + 1e-6));
+  ASSERT_TRUE(SPI::is_positive(p, q, r));
+  EXPECT_TRUE(SPI::is_positive(SPI::apply_boost(p, 2. * a), SPI::apply_boost(q, 2. * a), SPI::apply_boost(r, 2. * a)));
+}
+
+TEST(Mobius, BalancingRaisesTheSpringEnergyAndKeepsTrianglesPositive)
+{
+  const SPI::Mesh_arrays arrays = arrays_of(read_mesh(cgal_data + "/triceratops.off"));
+  const SPI::Sphere_system system = system_of(arrays);
+  std::vector<SPI::Vector3> x = initial_sphere_of(arrays, system);
+  SPI::Sphere_state state(system, x);
+  const double energy = SPI::spring_energy(system, x);
+  const double gradient = SPI::boost_gradient(system, x).norm();
+  const std::size_t boosts = SPI::balance_boosts(state, 1e-9, 20);
+  EXPECT_GT(boosts, 0u);
+  EXPECT_GT(SPI::spring_energy(system, x), energy);
+  EXPECT_LT(SPI::boost_gradient(system, x).norm(), 1e-6 * gradient);
+  EXPECT_EQ(state.invalid_faces(), 0u);
+  EXPECT_EQ(SPI::certify(system.triangles, x).flipped_faces, 0u);
+}
+
+// From stages 1 and 2, Newton with the boosts handled exactly reaches machine precision in a few steps, and the
+// residual falls at least quadratically once small.
+TEST(GlobalNewton, MobiusNewtonConvergesQuadratically)
+{
+  for(const std::string file : {cgal_data + "/triceratops.off", shared_meshes + "/npm_bunny.off", shared_meshes + "/trimesh_fuze.off"}) {
+    const SPI::Mesh_arrays arrays = arrays_of(read_mesh(file));
+    const SPI::Sphere_system system = system_of(arrays);
+    std::vector<SPI::Vector3> x = initial_sphere_of(arrays, system);
+    SPI::Sphere_state state(system, x);
+    SPI::Iteration_options options;
+    options.tolerance = 1e-15;
+    SPI::projected_gauss_seidel(state, options, SPI::Stopwatch());
+    std::vector<double> history;
+    options.progress = [&](const char*, std::size_t, double residual, std::size_t) { history.push_back(residual); return true; };
+    SPI::Mobius_newton_statistics statistics;
+    const SPI::Iteration_report report = SPI::mobius_newton(state, options, SPI::Stopwatch(), &statistics);
+    EXPECT_TRUE(report.converged) << file;
+    EXPECT_FALSE(statistics.gave_up) << file;
+    EXPECT_LE(report.sweeps, 8u) << file;
+    const SPI::Residuals residuals = SPI::compute_residuals(system, x);
+    EXPECT_LT(residuals.max_tangential, 1e-12) << file;
+    EXPECT_TRUE(SPI::certify(system.triangles, x).bijective) << file;
+    for(std::size_t k = 1; k < history.size(); ++k)
+      if(history[k - 1] < 1e-8 && history[k] > 1e-14) EXPECT_LT(history[k], 1e3 * history[k - 1] * history[k - 1]) << file << " step " << k;
+  }
+}
+
+// Cotangent weights made admissible (symmetric, positive) on cow: Newton alone gives up, the continuation from
+// Tutte's weights reaches their solution. Plain cotangent weights on triceratops: the path of solutions ends early.
+TEST(GlobalNewton, ContinuationFromTutteWeights)
+{
+  {
+    const SPI::Mesh_arrays arrays = arrays_of(read_mesh(cgal_data + "/cow.off"));
+    SPI::Sphere_system system = system_of(arrays, SP::Weighting::COTANGENT);
+    EXPECT_GT(SPI::make_weights_admissible(system), 0u);
+    std::vector<SPI::Vector3> x = initial_sphere_of(arrays, system);
+    SPI::Iteration_options options;
+    options.tolerance = 1e-12;
+    const SPI::Continuation_report report = SPI::weight_continuation(system, x, options, SPI::Stopwatch());
+    EXPECT_TRUE(report.reached);
+    EXPECT_LT(SPI::compute_residuals(system, x).paper, 1e-12);
+    EXPECT_TRUE(SPI::certify(system.triangles, x).bijective);
+  }
+  {
+    const SPI::Mesh_arrays arrays = arrays_of(read_mesh(cgal_data + "/triceratops.off"));
+    const SPI::Sphere_system system = system_of(arrays, SP::Weighting::COTANGENT);
+    std::vector<SPI::Vector3> x = initial_sphere_of(arrays, system);
+    SPI::Iteration_options options;
+    options.max_seconds = 60.;
+    const SPI::Continuation_report report = SPI::weight_continuation(system, x, options, SPI::Stopwatch());
+    EXPECT_FALSE(report.reached);
+    EXPECT_GT(report.last_parameter, 0.5);
+    EXPECT_LT(report.last_parameter, 0.95);
+    EXPECT_TRUE(SPI::certify(system.triangles, x).bijective);  // the solution at the last parameter reached
+  }
+}
+
+TEST(Weights, AdmissibleWeightsAreSymmetricAndPositive)
+{
+  const SPI::Mesh_arrays arrays = arrays_of(read_mesh(cgal_data + "/triceratops.off"));
+  for(SP::Weighting weighting : {SP::Weighting::COTANGENT, SP::Weighting::MEAN_VALUE}) {
+    SPI::Sphere_system system = system_of(arrays, weighting);
+    EXPECT_FALSE(system.symmetric && weighting == SP::Weighting::MEAN_VALUE);
+    std::size_t negative = 0;
+    for(std::size_t i = 0; i < system.number_of_vertices; ++i)
+      for(std::size_t k = system.offsets[i]; k < system.offsets[i + 1]; ++k)
+        negative += system.weights[k] < 0. && int(i) < system.neighbors[k];
+    const std::size_t clamped = SPI::make_weights_admissible(system);
+    EXPECT_GE(clamped, negative);
+    EXPECT_TRUE(system.symmetric);
+    for(std::size_t i = 0; i < system.number_of_vertices; ++i) {
+      double sum = 0.;
+      for(std::size_t k = system.offsets[i]; k < system.offsets[i + 1]; ++k) {
+        EXPECT_GT(system.weights[k], 0.);
+        sum += system.weights[k];
+        const std::size_t j = std::size_t(system.neighbors[k]);
+        EXPECT_NEAR(system.weights[k] * system.row_sums[i], system.weights[system.reverse[k]] * system.row_sums[j],
+                    1e-12 * system.weights[k] * system.row_sums[i]);
+      }
+      EXPECT_NEAR(sum, 1., 1e-12);
+    }
+  }
+}
+
+// The filtered orientation test agrees with CGAL's exact predicate, also on (nearly) degenerate triples.
+TEST(Certificate, FilteredOrientationIsExact)
+{
+  std::mt19937_64 random(1);
+  std::uniform_real_distribution<double> uniform(-1., 1.);
+  using P = Kernel::Point_3;
+  for(int k = 0; k < 200000; ++k) {
+    SPI::Vector3 a(uniform(random), uniform(random), uniform(random)), b(uniform(random), uniform(random), uniform(random));
+    a *= 1. / SPI::length(a);
+    b *= 1. / SPI::length(b);
+    SPI::Vector3 c(uniform(random), uniform(random), uniform(random));
+    const double t = uniform(random);
+    if(k % 4 == 1) c = t * a + (1. - t) * b;                                        // coplanar with the origin
+    if(k % 4 == 2) c = t * a + (1. - t) * b + 1e-15 * c;
+    if(k % 4 == 3) {                                                                 // tiny triangles
+      const double e = std::ldexp(1., -(k % 60));
+      b = a + e * b;
+      c = a + e * c;
+    }
+    const bool exact = CGAL::orientation(P(CGAL::ORIGIN), P(a.x, a.y, a.z), P(b.x, b.y, b.z), P(c.x, c.y, c.z)) == CGAL::POSITIVE;
+    ASSERT_EQ(SPI::is_positive(a, b, c), exact) << k;
+  }
+  const double nan = std::numeric_limits<double>::quiet_NaN();
+  EXPECT_FALSE(SPI::is_positive(SPI::Vector3(nan, 0, 1), SPI::Vector3(1, 0, 0), SPI::Vector3(0, 1, 0)));
 }
 
 // ---------------------------------------------------------------------------------------------------------------

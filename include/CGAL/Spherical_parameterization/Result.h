@@ -45,6 +45,8 @@ struct Result {
   std::size_t cut_loop_length = 0;      ///< Vertices on the loop shared by the two disks.
   std::size_t initial_flipped_faces = 0;///< Non-positive spherical triangles of the initial guess.
   bool uniform_initial_guess_fallback = false; ///< The disks were embedded with uniform weights instead.
+  bool admissible_weights = false;      ///< The weights were made symmetric and positive (named parameter `admissible_weights`).
+  std::size_t clamped_weights = 0;      ///< Edges whose weight `admissible_weights` raised to 1% of the local mean.
   std::size_t rejected_moves = 0;       ///< Vertex moves backtracked to preserve bijectivity.
 
   /// `true` when `status == Error_code::OK`.

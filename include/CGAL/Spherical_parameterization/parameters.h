@@ -28,7 +28,8 @@ enum class Weighting {
 /// \ingroup PkgSphericalParameterizationRef
 /// The solver of stage 3 (after projected Gauss-Seidel).
 enum class Nonlinear_solver {
-  GLOBAL_NEWTON, ///< Newton on all vertices at once in tangent coordinates, bijectivity-preserving step control (default).
+  GLOBAL_NEWTON, ///< Newton on all vertices at once in tangent coordinates, with the sphere's conformal boosts handled
+                 ///< exactly and bijectivity-preserving step control (default).
   LOCAL_NEWTON   ///< The paper's local Newton iteration on (theta, phi) with line search (Section 3.3).
 };
 
@@ -54,6 +55,7 @@ enum preserve_bijectivity_t { preserve_bijectivity };
 enum nonlinear_solver_t { nonlinear_solver };
 enum metis_seed_t { metis_seed };
 enum progress_callback_t { progress_callback };
+enum admissible_weights_t { admissible_weights };
 } // namespace internal_np
 
 namespace parameters {
@@ -93,6 +95,12 @@ CGAL_SPHERICAL_PARAMETERIZATION_NAMED_PARAMETER(max_seconds)
 CGAL_SPHERICAL_PARAMETERIZATION_NAMED_PARAMETER(preserve_bijectivity)
 /// Solver of stage 3 (`Nonlinear_solver`), default `Nonlinear_solver::GLOBAL_NEWTON`.
 CGAL_SPHERICAL_PARAMETERIZATION_NAMED_PARAMETER(nonlinear_solver)
+/// `true`: solve with the closest weights the theory covers instead of the given ones: `w_ij` and `w_ji` replaced by
+/// their mean, then weights below 1% of the mean weight at their vertices raised to it (default `false`). Symmetric
+/// positive weights have a bijective balanced solution on every inscribable connectivity; cotangent weights (which
+/// may be negative) and mean-value weights (not symmetric) in general do not. `Result::clamped_weights` counts the
+/// edges raised.
+CGAL_SPHERICAL_PARAMETERIZATION_NAMED_PARAMETER(admissible_weights)
 /// Seed of METIS' randomized separator (default 0): the same seed gives bitwise identical output.
 CGAL_SPHERICAL_PARAMETERIZATION_NAMED_PARAMETER(metis_seed)
 

@@ -163,6 +163,7 @@ Result run_pipeline(const Mesh_arrays& mesh, Sphere_system& system, const Pipeli
   }
 
   // Stages 2 and 3.
+  const std::vector<Vector3> initial_guess = x;
   Sphere_state state(system, x);
   Stopwatch iterations_clock;
   stage = Stopwatch();
@@ -182,7 +183,7 @@ Result run_pipeline(const Mesh_arrays& mesh, Sphere_system& system, const Pipeli
   if(!gauss_seidel.converged && !gauss_seidel.out_of_time && !cancelled && iteration_options.max_newton_sweeps > 0)
     newton = options.nonlinear_solver == Nonlinear_solver::LOCAL_NEWTON
                  ? local_newton(state, iteration_options, iterations_clock)
-                 : global_newton(state, iteration_options, iterations_clock);
+                 : global_newton(state, iteration_options, iterations_clock, &initial_guess);
   else newton.residual = gauss_seidel.residual;
   cancelled = cancelled || newton.cancelled;
   result.newton.iterations = newton.sweeps;
@@ -260,6 +261,9 @@ Result run_pipeline(const Mesh_arrays& mesh, Sphere_system& system, const Pipeli
 ///     \cgalParamDefault{`Weighting::UNIFORM`, or `Weighting::USER_MAP` when `halfedge_weight_map` is given} \cgalParamNEnd
 ///   \cgalParamNBegin{halfedge_weight_map} \cgalParamDescription{readable map halfedge -> double: the weight of `source(h)` in the equation of `target(h)`}
 ///     \cgalParamDefault{none} \cgalParamNEnd
+///   \cgalParamNBegin{admissible_weights} \cgalParamDescription{solve with the closest symmetric positive weights
+///     (`w_ij`, `w_ji` replaced by their mean, weights below 1% of the local mean raised to it), for which a bijective
+///     solution exists on every inscribable mesh} \cgalParamDefault{`false`} \cgalParamNEnd
 ///   \cgalParamNBegin{tolerance} \cgalParamDescription{stop when `Res` is below it} \cgalParamDefault{`1e-6`} \cgalParamNEnd
 ///   \cgalParamNBegin{max_gauss_seidel_sweeps} \cgalParamDescription{cap of stage 2} \cgalParamDefault{1000} \cgalParamNEnd
 ///   \cgalParamNBegin{max_newton_sweeps} \cgalParamDescription{cap of stage 3} \cgalParamDefault{200000} \cgalParamNEnd
@@ -390,6 +394,9 @@ Result spherical_parameterize(const TriangleMesh& tm, VertexSphereMap vsm,
     result.message = std::string(get_error_message(weight_status)) + ": " + weight_message;
     return result;
   }
+  const bool admissible = choose_parameter(get_parameter(np, internal_np::admissible_weights), false);
+  const std::size_t clamped_weights = admissible ? internal::make_weights_admissible(system) : 0;
+  if(admissible) options.weighting = Weighting::USER_MAP;  // the disks use the same (admissible) weights
 
   using Solver = typename CGAL::internal_np::Lookup_named_param_def<CGAL::internal_np::sparse_linear_solver_t, NamedParameters,
                                                                     Default_disk_solver_traits>::type;
@@ -397,6 +404,8 @@ Result spherical_parameterize(const TriangleMesh& tm, VertexSphereMap vsm,
 
   std::vector<internal::Vector3> x;
   Result result = internal::run_pipeline(mesh, system, options, solver, x);
+  result.admissible_weights = admissible;
+  result.clamped_weights = clamped_weights;
   if(x.size() == mesh.points.size()) {
     using Point = typename boost::property_traits<VertexSphereMap>::value_type;
     for(auto v : vertices(tm)) {

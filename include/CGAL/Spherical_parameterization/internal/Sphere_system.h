@@ -152,6 +152,40 @@ inline Error_code assign_weights(Sphere_system& system, const Mesh_arrays& mesh,
   return Error_code::OK;
 }
 
+// Replaces the weights by the closest ones the theory covers (Gotsman, Gu and Sheffer: symmetric and positive,
+// for which a bijective balanced solution exists on every inscribable connectivity): w_ij and w_ji by their mean,
+// then every weight below 1% of the mean weight of its two vertices by that 1%. Works on the raw weights, then
+// normalizes again. Returns the number of edges whose weight was raised.
+inline std::size_t make_weights_admissible(Sphere_system& system)
+{
+  const std::size_t n = system.number_of_vertices;
+  std::vector<double> raw(system.weights.size());
+  std::vector<double> mean_magnitude(n, 0.);
+  for(std::size_t i = 0; i < n; ++i)
+    for(std::size_t k = system.offsets[i]; k < system.offsets[i + 1]; ++k) {
+      const std::size_t j = static_cast<std::size_t>(system.neighbors[k]);
+      raw[k] = 0.5 * (system.weights[k] * system.row_sums[i] + system.weights[system.reverse[k]] * system.row_sums[j]);
+      mean_magnitude[i] += std::abs(raw[k]) / static_cast<double>(system.degree(i));
+    }
+  std::size_t clamped = 0;
+  for(std::size_t i = 0; i < n; ++i) {
+    double sum = 0.;
+    for(std::size_t k = system.offsets[i]; k < system.offsets[i + 1]; ++k) {
+      const std::size_t j = static_cast<std::size_t>(system.neighbors[k]);
+      const double floor = 0.01 * 0.5 * (mean_magnitude[i] + mean_magnitude[j]);
+      if(raw[k] < floor) {
+        raw[k] = floor;
+        clamped += i < j;  // each edge once
+      }
+      sum += raw[k];
+    }
+    for(std::size_t k = system.offsets[i]; k < system.offsets[i + 1]; ++k) system.weights[k] = raw[k] / sum;
+    system.row_sums[i] = sum;
+  }
+  system.symmetric = true;
+  return clamped;
+}
+
 // sum_j w_ij x_j
 inline Vector3 weighted_neighbor_sum(const Sphere_system& system, const std::vector<Vector3>& x, std::size_t i)
 {
@@ -169,11 +203,22 @@ struct Residuals {
   double max_tangential = 0.;   // max |r_i|
 };
 
+// The residual alpha_i x_i - sum_j w_ij x_j of vertex i (normalized weights, alpha_i = x_i . sum_j w_ij x_j),
+// written as the tangential part of sum_j w_ij (x_j - x_i): the differences keep the digits of tiny triangles,
+// which sums of O(1) positions would lose.
+inline Vector3 tangential_residual(const Sphere_system& system, const std::vector<Vector3>& x, std::size_t i)
+{
+  Vector3 s;
+  for(std::size_t k = system.offsets[i]; k < system.offsets[i + 1]; ++k)
+    s += system.weights[k] * (x[static_cast<std::size_t>(system.neighbors[k])] - x[i]);
+  return tangential_part(x[i], s);
+}
+
 inline Residuals compute_residuals(const Sphere_system& system, const std::vector<Vector3>& x)
 {
   double sum = 0., largest = 0.;
   for(std::size_t i = 0; i < system.number_of_vertices; ++i) {
-    const double r2 = squared_length(tangential_part(x[i], weighted_neighbor_sum(system, x, i)));
+    const double r2 = squared_length(tangential_residual(system, x, i));
     sum += r2;
     largest = std::max(largest, r2);
   }

@@ -15,6 +15,8 @@ struct Vector3 {
   Vector3() = default;
   Vector3(double x_, double y_, double z_) : x(x_), y(y_), z(z_) {}
 
+  double operator[](int k) const { return k == 0 ? x : (k == 1 ? y : z); }
+
   Vector3& operator+=(const Vector3& o) { x += o.x; y += o.y; z += o.z; return *this; }
   Vector3& operator-=(const Vector3& o) { x -= o.x; y -= o.y; z -= o.z; return *this; }
   Vector3& operator*=(double s) { x *= s; y *= s; z *= s; return *this; }

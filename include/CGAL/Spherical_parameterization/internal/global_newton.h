@@ -1,17 +1,23 @@
 // Stage 3, beyond the paper: Newton's method on all vertices at once, in tangent coordinates.
 //
-// Unknowns: a displacement d_i in the tangent plane of every x_i (frame t1_i, t2_i). Equations: the tangential
-// part of the raw weighted sums, F_i = T_i^T sum_j W_ij x_j (zero exactly at balanced positions). Linearized,
-// dF_i = -(x_i . s_i) d_i + sum_j W_ij T_i^T T_j d_j, a sparse 2n x 2n system that is symmetric when the raw
-// weights are (uniform, cotangent). Rotations of the sphere leave the equations invariant, so the matrix is
-// nearly singular along them; a tiny diagonal shift removes that without changing the step elsewhere.
-// A step is accepted only if it keeps every positively oriented triangle positive (exact predicate) and lowers
-// the paper's residual; otherwise it is halved. The local Newton sweeps take over if a step cannot be found.
+// global_newton() first runs the Moebius-aware Newton of mobius_newton.h (symmetric weights), which converges
+// in a few steps on most meshes. Where its steps keep being cut short, weights other than Tutte's are reached by
+// continuation from Tutte's (weight_continuation.h). Where that fails too (non-symmetric weights, meshes whose
+// thin parts must shrink by orders of magnitude, weights whose solutions degenerate), the cautious Newton below
+// takes over from the best iterate:
+// unknowns d_i in the tangent planes, equations F_i = T_i^T sum_j W_ij x_j, the Jacobian
+// dF_i = -(x_i . s_i) d_i + sum_j W_ij T_i^T T_j d_j with a tiny diagonal shift against the rotations
+// (Levenberg-Marquardt steps (J^T J + mu I) d = J^T F for non-symmetric weights), each step halved until it keeps
+// every positively oriented triangle positive (exact predicate) and lowers the paper's residual, and the
+// paper's local Newton sweeps whenever no such step exists.
 
 #ifndef CGAL_SPHERICAL_PARAMETERIZATION_INTERNAL_GLOBAL_NEWTON_H
 #define CGAL_SPHERICAL_PARAMETERIZATION_INTERNAL_GLOBAL_NEWTON_H
 
 #include <CGAL/Spherical_parameterization/internal/sphere_iterations.h>
+#include <CGAL/Spherical_parameterization/internal/mobius_newton.h>
+#include <CGAL/Spherical_parameterization/internal/tangent_newton_system.h>
+#include <CGAL/Spherical_parameterization/internal/weight_continuation.h>
 
 #include <Eigen/Sparse>
 #include <Eigen/SparseLU>
@@ -27,14 +33,6 @@
 namespace CGAL {
 namespace Spherical_parameterization {
 namespace internal {
-
-inline void tangent_frame(const Vector3& x, Vector3& t1, Vector3& t2)
-{
-  const Vector3 helper = std::abs(x.x) < 0.6 ? Vector3(1, 0, 0) : (std::abs(x.y) < 0.6 ? Vector3(0, 1, 0) : Vector3(0, 0, 1));
-  t1 = cross(x, helper);
-  t1 *= 1. / length(t1);
-  t2 = cross(x, t1);
-}
 
 class Global_newton {
 public:
@@ -211,13 +209,14 @@ private:
   Eigen::SparseLU<Eigen::SparseMatrix<double>, Eigen::COLAMDOrdering<int>> lu_;
 };
 
-// Global Newton steps until Res < tolerance with no non-positive face; a batch of local Newton sweeps
+// Cautious global Newton steps until Res < tolerance with no non-positive face; a batch of local Newton sweeps
 // whenever no acceptable global step exists, then Newton again.
-inline Iteration_report global_newton(Sphere_state& state, const Iteration_options& options, const Stopwatch& clock)
+inline Iteration_report cautious_newton(Sphere_state& state, const Iteration_options& options, const Stopwatch& clock)
 {
   Iteration_report report;
   Global_newton newton(state.system(), options.preserve_bijectivity);
-  double residual = state.refresh_sums();
+  state.refresh_sums();
+  double residual = compute_residuals(state.system(), state.positions()).paper;
   std::size_t local_sweeps = 0;
   // Stagnation: non-symmetric weights (mean value) generally admit no exact solution, because the three torque
   // identities that make the equations consistent for symmetric weights fail; the residual then levels off at a
@@ -233,7 +232,8 @@ inline Iteration_report global_newton(Sphere_state& state, const Iteration_optio
           if(!local_newton_step(state, i, options.preserve_bijectivity)) ++report.rejected_moves;
         ++local_sweeps;
       }
-      residual = state.refresh_sums();
+      state.refresh_sums();
+      residual = compute_residuals(state.system(), state.positions()).paper;
     }
     ++report.sweeps;
     if(options.progress && !options.progress("global newton", report.sweeps, residual, state.invalid_faces())) {
@@ -246,6 +246,50 @@ inline Iteration_report global_newton(Sphere_state& state, const Iteration_optio
   report.residual = residual;
   report.converged = residual < options.tolerance && state.invalid_faces() == 0;
   return report;
+}
+
+// True when every raw weight is the same (Tutte's weights, up to a factor).
+inline bool has_tutte_weights(const Sphere_system& system)
+{
+  if(system.weights.empty()) return true;
+  const double first = system.weights[0] * system.row_sums[0];
+  for(std::size_t i = 0; i < system.number_of_vertices; ++i)
+    for(std::size_t k = system.offsets[i]; k < system.offsets[i + 1]; ++k)
+      if(std::abs(system.weights[k] * system.row_sums[i] - first) > 1e-12 * std::abs(first)) return false;
+  return true;
+}
+
+// Stage 3. Symmetric weights: the Moebius-aware Newton; if it gives up and the weights are not Tutte's, the
+// continuation from Tutte's weights; if that fails too, the cautious Newton from the best iterate so far.
+// Non-symmetric weights: the cautious Newton (Levenberg-Marquardt).
+inline Iteration_report global_newton(Sphere_state& state, const Iteration_options& options, const Stopwatch& clock,
+                                      const std::vector<Vector3>* initial_guess = nullptr)
+{
+  const Sphere_system& system = state.system();
+  if(!system.symmetric) return cautious_newton(state, options, clock);
+  Mobius_newton_statistics statistics;
+  Iteration_report report = mobius_newton(state, options, clock, &statistics);
+  if(!statistics.gave_up) return report;
+  if(!has_tutte_weights(system)) {
+    const std::vector<Vector3> start = state.positions();
+    const Continuation_report continuation = weight_continuation(system, state.positions(), options, clock, initial_guess);
+    state.assign(state.positions());
+    report.sweeps += continuation.newton_steps;
+    if(continuation.reached) {
+      report.residual = compute_residuals(system, state.positions()).paper;
+      report.converged = report.residual < options.tolerance && state.invalid_faces() == 0;
+      report.stagnated = false;
+      if(report.converged) return report;
+    }
+    if(continuation.cancelled) { report.cancelled = true; return report; }
+    state.assign(start);
+  }
+  Iteration_options remaining = options;
+  remaining.max_newton_sweeps = options.max_newton_sweeps > report.sweeps ? options.max_newton_sweeps - report.sweeps : 0;
+  Iteration_report cautious = cautious_newton(state, remaining, clock);
+  cautious.sweeps += report.sweeps;
+  cautious.rejected_moves += report.rejected_moves;
+  return cautious;
 }
 
 } // namespace internal

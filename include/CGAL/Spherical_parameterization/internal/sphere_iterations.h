@@ -101,33 +101,10 @@ public:
     return true;
   }
 
-  // A move of vertex i to y may not turn a positive incident face non-positive.
-  bool is_acceptable(std::size_t i, const Vector3& y) const
-  {
-    const std::size_t begin = system_.offsets[i], end = system_.offsets[i + 1], d = end - begin;
-    for(std::size_t k = begin; k < end; ++k) {
-      if(!face_positive_[static_cast<std::size_t>(system_.ring_faces[k])]) continue;
-      const Vector3& a = x_[static_cast<std::size_t>(system_.neighbors[k])];
-      const Vector3& b = x_[static_cast<std::size_t>(system_.neighbors[begin + (k - begin + 1) % d])];
-      if(!is_positive(y, a, b)) return false;
-    }
-    return true;
-  }
-
   void move(std::size_t i, const Vector3& y)
   {
-    const Vector3 delta = y - x_[i];
-    x_[i] = y;
-    const std::size_t begin = system_.offsets[i], end = system_.offsets[i + 1], d = end - begin;
-    for(std::size_t k = begin; k < end; ++k) {
-      const std::size_t j = static_cast<std::size_t>(system_.neighbors[k]);
-      s_[j] += system_.weights[system_.reverse[k]] * delta;
-      const std::size_t f = static_cast<std::size_t>(system_.ring_faces[k]);
-      const Vector3& b = x_[static_cast<std::size_t>(system_.neighbors[begin + (k - begin + 1) % d])];
-      const char positive = is_positive(y, x_[j], b);
-      invalid_faces_ = invalid_faces_ + (face_positive_[f] ? 1 : 0) - (positive ? 1 : 0);
-      face_positive_[f] = positive;
-    }
+    ring_orientation(i, y, false);
+    commit(i, y);
   }
 
   // Moves i to the first of y, then points pulled back towards x_i, that is acceptable; false if none is.
@@ -136,14 +113,48 @@ public:
     if(preserve) {
       const Vector3 start = x_[i];
       int halvings = 0;
-      while(!is_acceptable(i, y)) {
+      while(!ring_orientation(i, y, true)) {
         if(++halvings > 12) return false;
         y = start + 0.5 * (y - start);
         y *= 1. / length(y);
       }
+    } else {
+      ring_orientation(i, y, false);
     }
-    move(i, y);
+    commit(i, y);
     return true;
+  }
+
+private:
+  // The orientations of the faces around i with i at y, into ring_positive_. With `stop_at_fold`, returns false
+  // (leaving ring_positive_ incomplete) as soon as a positive face would turn non-positive.
+  bool ring_orientation(std::size_t i, const Vector3& y, bool stop_at_fold)
+  {
+    const std::size_t begin = system_.offsets[i], end = system_.offsets[i + 1];
+    ring_positive_.resize(end - begin);
+    for(std::size_t k = begin; k < end; ++k) {
+      const Vector3& a = x_[static_cast<std::size_t>(system_.neighbors[k])];
+      const Vector3& b = x_[static_cast<std::size_t>(system_.neighbors[k + 1 < end ? k + 1 : begin])];
+      const bool positive = is_positive(y, a, b);
+      ring_positive_[k - begin] = positive;
+      if(stop_at_fold && !positive && face_positive_[static_cast<std::size_t>(system_.ring_faces[k])]) return false;
+    }
+    return true;
+  }
+
+  // Moves i to y; the orientations of its faces are those just computed by ring_orientation(i, y, ...).
+  void commit(std::size_t i, const Vector3& y)
+  {
+    const Vector3 delta = y - x_[i];
+    x_[i] = y;
+    const std::size_t begin = system_.offsets[i], end = system_.offsets[i + 1];
+    for(std::size_t k = begin; k < end; ++k) {
+      s_[static_cast<std::size_t>(system_.neighbors[k])] += system_.weights[system_.reverse[k]] * delta;
+      const std::size_t f = static_cast<std::size_t>(system_.ring_faces[k]);
+      const char positive = ring_positive_[k - begin];
+      invalid_faces_ = invalid_faces_ + (face_positive_[f] ? 1 : 0) - (positive ? 1 : 0);
+      face_positive_[f] = positive;
+    }
   }
 
 private:
@@ -151,6 +162,7 @@ private:
   std::vector<Vector3>& x_;
   std::vector<Vector3> s_;
   std::vector<char> face_positive_;
+  std::vector<char> ring_positive_;   // scratch of ring_orientation()
   std::size_t invalid_faces_ = 0;
 };
 

@@ -17,9 +17,21 @@ namespace Spherical_parameterization {
 namespace internal {
 
 // True when the spherical triangle (a, b, c) is positively oriented: orientation(ORIGIN, a, b, c) is POSITIVE,
-// decided exactly on the double coordinates (filtered, so cheap in the common case).
+// decided exactly on the double coordinates. The determinant a . (b x c) is computed in double first; when it is
+// farther from 0 than its worst-case rounding error (Shewchuk's bound for orient3d, with the fourth point at the
+// origin so that no translation error occurs) its sign is certain; otherwise CGAL's exact predicate decides.
+// The iterations call this millions of times, mostly on clear cases.
 inline bool is_positive(const Vector3& a, const Vector3& b, const Vector3& c)
 {
+  const double bc_x = b.y * c.z - b.z * c.y, bc_y = b.z * c.x - b.x * c.z, bc_z = b.x * c.y - b.y * c.x;
+  const double det = a.x * bc_x + a.y * bc_y + a.z * bc_z;
+  const double permanent = std::abs(a.x) * (std::abs(b.y * c.z) + std::abs(b.z * c.y)) +
+                           std::abs(a.y) * (std::abs(b.z * c.x) + std::abs(b.x * c.z)) +
+                           std::abs(a.z) * (std::abs(b.x * c.y) + std::abs(b.y * c.x));
+  const double bound = 7.7715611723761027e-16 * permanent;  // (7 + 56 eps) eps, eps = 2^-53
+  if(det > bound) return true;
+  if(det < -bound) return false;
+  if(!std::isfinite(permanent)) return false;  // a non-finite coordinate: never positive
   using P = CGAL::Epick::Point_3;
   return CGAL::orientation(P(CGAL::ORIGIN), P(a.x, a.y, a.z), P(b.x, b.y, b.z), P(c.x, c.y, c.z)) == CGAL::POSITIVE;
 }

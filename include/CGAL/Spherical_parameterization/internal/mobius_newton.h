@@ -1,0 +1,126 @@
+// Stage 3, beyond the paper, for symmetric weights: Newton's method on all vertices at once with the Moebius
+// boosts handled exactly (see mobius.h).
+//
+// Each iteration (1) balances the boosts (maximizes the spring energy over them), (2) solves Newton's system in
+// tangent coordinates (tangent_newton_system.h), (3) splits the step into its rotation part (dropped: rotations
+// change nothing), its boost part (applied as an exact boost, whose linearization is poor) and the rest (added
+// and projected back onto the sphere), and (4) shortens the step until every positive triangle stays positive
+// (exact predicate) and the paper's Res decreases; when no such step exists, five of the paper's local Newton
+// sweeps move the iterate instead. When the steps keep being cut short, it gives up and restores its best
+// iterate, so that another strategy can continue (global_newton.h).
+
+#ifndef CGAL_SPHERICAL_PARAMETERIZATION_INTERNAL_MOBIUS_NEWTON_H
+#define CGAL_SPHERICAL_PARAMETERIZATION_INTERNAL_MOBIUS_NEWTON_H
+
+#include <CGAL/Spherical_parameterization/internal/mobius.h>
+#include <CGAL/Spherical_parameterization/internal/sphere_iterations.h>
+#include <CGAL/Spherical_parameterization/internal/tangent_newton_system.h>
+
+#include <cmath>
+#include <cstddef>
+#include <vector>
+
+namespace CGAL {
+namespace Spherical_parameterization {
+namespace internal {
+
+struct Mobius_newton_statistics {
+  std::size_t newton_steps = 0;    // accepted Newton steps
+  std::size_t full_steps = 0;      // of which taken whole (t = 1)
+  std::size_t boosts = 0;          // balancing boosts applied
+  bool gave_up = false;            // Newton's steps were too short: the caller should continue otherwise
+};
+
+// Iterates until Res < tolerance with every face positive, the caps, or `patience` iterations in a row whose step
+// had to be cut below a quarter (Newton's model does not hold: far from the solution, or a multi-scale mesh whose
+// thin parts must shrink by orders of magnitude); then `gave_up` is set and the best iterate is restored.
+inline Iteration_report mobius_newton(Sphere_state& state, const Iteration_options& options, const Stopwatch& clock,
+                                      Mobius_newton_statistics* statistics = nullptr, std::size_t patience = 3)
+{
+  Iteration_report report;
+  Mobius_newton_statistics counts;
+  const Sphere_system& system = state.system();
+  const std::size_t n = system.number_of_vertices;
+  std::vector<Vector3>& x = state.positions();
+  Tangent_newton_system newton(system);
+  std::vector<Vector3> step, trial(n);
+  double residual = compute_residuals(system, x).paper;
+  // The best iterate: lowest Res among those with the fewest non-positive faces.
+  const std::vector<Vector3> start = x;
+  std::vector<Vector3> best = x;
+  double best_residual = residual;
+  std::size_t best_invalid = state.invalid_faces();
+  std::size_t short_steps = 0;
+  while(!(residual < options.tolerance && state.invalid_faces() == 0)) {
+    if(report.sweeps >= options.max_newton_sweeps) break;
+    if(options.max_seconds >= 0. && clock.seconds() > options.max_seconds) { report.out_of_time = true; break; }
+
+    // The boost gradient only needs to be small next to the residual forces that Newton is about to remove.
+    counts.boosts += balance_boosts(state, 1e-3 * residual * static_cast<double>(n), 8);
+    residual = compute_residuals(system, x).paper;
+
+    double accepted_t = 0.;
+    if(newton.factorize(x) && newton.solve(step)) {
+      Vector3 rotation, boost;
+      remove_rotation_and_boost(x, step, rotation, boost);
+      for(double t = 1.; t > 1e-3; t *= 0.5) {
+        for(std::size_t i = 0; i < n; ++i) {
+          const Vector3 y = x[i] + t * step[i];
+          trial[i] = apply_boost(y * (1. / length(y)), t * boost);
+        }
+        if(options.preserve_bijectivity && !state.keeps_positive_faces(trial)) continue;
+        const double trial_residual = compute_residuals(system, trial).paper;
+        if(trial_residual < residual) {
+          state.assign(trial);
+          residual = trial_residual;
+          accepted_t = t;
+          ++counts.newton_steps;
+          if(t == 1.) ++counts.full_steps;
+          break;
+        }
+      }
+    }
+    if(accepted_t == 0.) {
+      // No acceptable step: the paper's local Newton sweeps (which keep every positive triangle positive) move
+      // the iterate, so that the next Newton step starts elsewhere.
+      for(int sweep = 0; sweep < 5; ++sweep)
+        for(std::size_t i = 0; i < n; ++i)
+          if(!local_newton_step(state, i, options.preserve_bijectivity)) ++report.rejected_moves;
+      state.refresh_sums();
+      residual = compute_residuals(system, x).paper;
+    }
+    ++report.sweeps;
+    if(state.invalid_faces() < best_invalid || (state.invalid_faces() == best_invalid && residual < best_residual)) {
+      best = x;
+      best_residual = residual;
+      best_invalid = state.invalid_faces();
+    }
+    if(options.progress && !options.progress("global newton", report.sweeps, residual, state.invalid_faces())) {
+      report.cancelled = true;
+      break;
+    }
+    short_steps = accepted_t >= 0.25 ? 0 : short_steps + 1;
+    if(short_steps >= patience) { counts.gave_up = true; break; }
+  }
+  // A collapse onto a great circle can pass the orientation test with a small residual; the areas expose it,
+  // and then none of these iterates is trusted.
+  if(!counts.gave_up && residual < options.tolerance && state.invalid_faces() == 0 && !certify(system.triangles, x).bijective) {
+    counts.gave_up = true;
+    best = start;
+  }
+  if(counts.gave_up || report.cancelled || report.out_of_time) {
+    state.assign(best);
+    residual = compute_residuals(system, x).paper;
+  }
+  report.residual = residual;
+  report.converged = residual < options.tolerance && state.invalid_faces() == 0;
+  report.stagnated = counts.gave_up;
+  if(statistics != nullptr) *statistics = counts;
+  return report;
+}
+
+} // namespace internal
+} // namespace Spherical_parameterization
+} // namespace CGAL
+
+#endif // CGAL_SPHERICAL_PARAMETERIZATION_INTERNAL_MOBIUS_NEWTON_H

@@ -1,0 +1,231 @@
+// Newton's linear system for the balance equations in tangent coordinates, for symmetric weights.
+//
+// Unknowns: a displacement d_i = a_i t1_i + b_i t2_i in the tangent plane of every x_i. Equations: the tangential
+// residuals F_i = T_i^T sum_j W_ij (x_j - x_i) with the raw weights W (written with differences, so that tiny
+// triangles keep their digits). Linearized: dF_i = sum_j W_ij T_i^T T_j d_j - alpha_i d_i with
+// alpha_i = x_i . sum_j W_ij x_j: a sparse symmetric 2n x 2n matrix when W is symmetric. Rotations are an exact
+// null space; they are removed by fixing a gauge (vertex 0 does not move, and a vertex at about 90 degrees from it
+// does not move around it). The matrix is factorized with a sparse LDL^T whose fill-reducing order is computed
+// once, on the vertex graph, and whose pattern (upper triangle only) is written in place at every step.
+
+#ifndef CGAL_SPHERICAL_PARAMETERIZATION_INTERNAL_TANGENT_NEWTON_SYSTEM_H
+#define CGAL_SPHERICAL_PARAMETERIZATION_INTERNAL_TANGENT_NEWTON_SYSTEM_H
+
+#include <CGAL/Spherical_parameterization/internal/Sphere_system.h>
+#include <CGAL/Spherical_parameterization/internal/Vector3.h>
+
+#include <Eigen/OrderingMethods>
+#include <Eigen/SparseCholesky>
+#include <Eigen/SparseCore>
+
+#include <metis.h>
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <cstddef>
+#include <numeric>
+#include <vector>
+
+namespace CGAL {
+namespace Spherical_parameterization {
+namespace internal {
+
+inline void tangent_frame(const Vector3& x, Vector3& t1, Vector3& t2)
+{
+  const Vector3 helper = std::abs(x.x) < 0.6 ? Vector3(1, 0, 0) : (std::abs(x.y) < 0.6 ? Vector3(0, 1, 0) : Vector3(0, 0, 1));
+  t1 = cross(x, helper);
+  t1 *= 1. / length(t1);
+  t2 = cross(x, t1);
+}
+
+// A fill-reducing order of the vertices, computed on the vertex graph (a quarter of the unknowns' graph):
+// approximate minimum degree for small meshes, where it is the faster to compute, METIS nested dissection for
+// large ones, where its smaller fill pays. rank[i] is the position of vertex i.
+inline std::vector<int> vertex_elimination_rank(const Sphere_system& system)
+{
+  const std::size_t n = system.number_of_vertices;
+  std::vector<int> rank(n);
+  std::iota(rank.begin(), rank.end(), 0);
+  if(n < 3) return rank;
+  if(n < 20000) {
+    Eigen::SparseMatrix<double> pattern(static_cast<Eigen::Index>(n), static_cast<Eigen::Index>(n));
+    std::vector<Eigen::Triplet<double>> entries;
+    entries.reserve(n + system.neighbors.size());
+    for(std::size_t i = 0; i < n; ++i) {
+      entries.emplace_back(static_cast<int>(i), static_cast<int>(i), 1.);
+      for(std::size_t k = system.offsets[i]; k < system.offsets[i + 1]; ++k) entries.emplace_back(static_cast<int>(i), system.neighbors[k], 1.);
+    }
+    pattern.setFromTriplets(entries.begin(), entries.end());
+    Eigen::PermutationMatrix<Eigen::Dynamic, Eigen::Dynamic, int> inverse;
+    Eigen::AMDOrdering<int>()(pattern, inverse);
+    const Eigen::PermutationMatrix<Eigen::Dynamic, Eigen::Dynamic, int> order = inverse.inverse();
+    for(std::size_t i = 0; i < n; ++i) rank[i] = order.indices()[static_cast<Eigen::Index>(i)];
+    return rank;
+  }
+  idx_t nv = static_cast<idx_t>(n);
+  std::vector<idx_t> xadj(system.offsets.begin(), system.offsets.end());
+  std::vector<idx_t> adjncy(system.neighbors.begin(), system.neighbors.end());
+  std::vector<idx_t> perm(n), iperm(n);
+  idx_t options[METIS_NOPTIONS];
+  METIS_SetDefaultOptions(options);
+  options[METIS_OPTION_NUMBERING] = 0;
+  if(METIS_NodeND(&nv, xadj.data(), adjncy.data(), nullptr, options, perm.data(), iperm.data()) != METIS_OK) return rank;
+  for(std::size_t i = 0; i < n; ++i) rank[i] = static_cast<int>(iperm[i]);
+  return rank;
+}
+
+class Tangent_newton_system {
+public:
+  explicit Tangent_newton_system(const Sphere_system& system) : system_(system) {}
+
+  // Assembles and factorizes at x; false when the factorization fails.
+  bool factorize(const std::vector<Vector3>& x)
+  {
+    const std::size_t n = system_.number_of_vertices;
+    if(rank_.empty()) build_pattern();
+    t1_.resize(n);
+    t2_.resize(n);
+    for(std::size_t i = 0; i < n; ++i) tangent_frame(x[i], t1_[i], t2_[i]);
+    // Gauge: vertex 0 does not move, and vertex g, the closest to 90 degrees from it, does not turn around it.
+    std::size_t g = 0;
+    double smallest = 2.;
+    for(std::size_t i = 1; i < n; ++i) {
+      const double c = std::abs(dot(x[i], x[0]));
+      if(c < smallest) { smallest = c; g = i; }
+    }
+    Vector3 around = cross(x[0], x[g]);
+    const bool has_gauge = g != 0 && length(around) > 1e-3;
+    if(has_gauge) {
+      t1_[g] = around * (1. / length(around));
+      t2_[g] = cross(x[g], t1_[g]);
+    }
+
+    double* value = matrix_.valuePtr();
+    rhs_.resize(static_cast<Eigen::Index>(2 * n));
+    for(std::size_t i = 0; i < n; ++i) {
+      Vector3 force;
+      double alpha = 0.;
+      for(std::size_t k = system_.offsets[i]; k < system_.offsets[i + 1]; ++k) {
+        const std::size_t j = static_cast<std::size_t>(system_.neighbors[k]);
+        const double w = system_.weights[k] * system_.row_sums[i];
+        const Vector3 e = x[j] - x[i];
+        force += w * e;
+        alpha += w * (1. - 0.5 * squared_length(e));
+        if(rank_[i] < rank_[j]) {
+          const std::array<std::size_t, 4>& slot = block_slots_[k];
+          value[slot[0]] = w * dot(t1_[i], t1_[j]);
+          value[slot[1]] = w * dot(t1_[i], t2_[j]);
+          value[slot[2]] = w * dot(t2_[i], t1_[j]);
+          value[slot[3]] = w * dot(t2_[i], t2_[j]);
+        }
+      }
+      const std::array<std::size_t, 3>& d = diagonal_slots_[i];
+      value[d[0]] = -alpha;
+      value[d[1]] = 0.;
+      value[d[2]] = -alpha;
+      rhs_[unknown(i, 0)] = -dot(t1_[i], force);
+      rhs_[unknown(i, 1)] = -dot(t2_[i], force);
+    }
+    fix_unknown(0, 0);
+    fix_unknown(0, 1);
+    if(has_gauge) fix_unknown(g, 0);
+
+    if(!analyzed_) {
+      ldlt_.analyzePattern(matrix_);
+      analyzed_ = true;
+    }
+    ldlt_.factorize(matrix_);
+    return ldlt_.info() == Eigen::Success;
+  }
+
+  // Newton's step as tangent vectors; false when it is not finite.
+  bool solve(std::vector<Vector3>& step)
+  {
+    const Eigen::VectorXd solution = ldlt_.solve(rhs_);
+    if(ldlt_.info() != Eigen::Success || !solution.allFinite()) return false;
+    const std::size_t n = system_.number_of_vertices;
+    step.resize(n);
+    for(std::size_t i = 0; i < n; ++i) step[i] = solution[unknown(i, 0)] * t1_[i] + solution[unknown(i, 1)] * t2_[i];
+    return true;
+  }
+
+private:
+  Eigen::Index unknown(std::size_t i, int component) const { return 2 * static_cast<Eigen::Index>(rank_[i]) + component; }
+
+  // The upper triangle of the 2x2-block pattern in elimination order, and where every block's values sit.
+  void build_pattern()
+  {
+    const std::size_t n = system_.number_of_vertices;
+    rank_ = vertex_elimination_rank(system_);
+    std::vector<Eigen::Triplet<double>> triplets;
+    triplets.reserve(3 * n + 2 * system_.neighbors.size());
+    for(std::size_t i = 0; i < n; ++i) {
+      triplets.emplace_back(unknown(i, 0), unknown(i, 0), 0.);
+      triplets.emplace_back(unknown(i, 0), unknown(i, 1), 0.);
+      triplets.emplace_back(unknown(i, 1), unknown(i, 1), 0.);
+      for(std::size_t k = system_.offsets[i]; k < system_.offsets[i + 1]; ++k) {
+        const std::size_t j = static_cast<std::size_t>(system_.neighbors[k]);
+        if(rank_[i] > rank_[j]) continue;
+        for(int a = 0; a < 2; ++a)
+          for(int b = 0; b < 2; ++b) triplets.emplace_back(unknown(i, a), unknown(j, b), 0.);
+      }
+    }
+    matrix_.resize(static_cast<Eigen::Index>(2 * n), static_cast<Eigen::Index>(2 * n));
+    matrix_.setFromTriplets(triplets.begin(), triplets.end());
+    matrix_.makeCompressed();
+    auto slot = [&](Eigen::Index row, Eigen::Index column) {
+      const int* begin = matrix_.innerIndexPtr() + matrix_.outerIndexPtr()[column];
+      const int* end = matrix_.innerIndexPtr() + matrix_.outerIndexPtr()[column + 1];
+      return static_cast<std::size_t>(std::lower_bound(begin, end, static_cast<int>(row)) - matrix_.innerIndexPtr());
+    };
+    diagonal_slots_.resize(n);
+    block_slots_.assign(system_.neighbors.size(), {0, 0, 0, 0});
+    for(std::size_t i = 0; i < n; ++i) {
+      diagonal_slots_[i] = {slot(unknown(i, 0), unknown(i, 0)), slot(unknown(i, 0), unknown(i, 1)), slot(unknown(i, 1), unknown(i, 1))};
+      for(std::size_t k = system_.offsets[i]; k < system_.offsets[i + 1]; ++k) {
+        const std::size_t j = static_cast<std::size_t>(system_.neighbors[k]);
+        if(rank_[i] > rank_[j]) continue;
+        block_slots_[k] = {slot(unknown(i, 0), unknown(j, 0)), slot(unknown(i, 0), unknown(j, 1)),
+                           slot(unknown(i, 1), unknown(j, 0)), slot(unknown(i, 1), unknown(j, 1))};
+      }
+    }
+  }
+
+  // Turns the unknown into d = 0: its row and column become those of the identity, its right-hand side 0.
+  void fix_unknown(std::size_t v, int component)
+  {
+    double* value = matrix_.valuePtr();
+    const std::array<std::size_t, 3>& d = diagonal_slots_[v];
+    value[component == 0 ? d[0] : d[2]] = 1.;
+    value[d[1]] = 0.;
+    for(std::size_t k = system_.offsets[v]; k < system_.offsets[v + 1]; ++k) {
+      const std::size_t j = static_cast<std::size_t>(system_.neighbors[k]);
+      if(rank_[v] < rank_[j]) {
+        value[block_slots_[k][2 * component]] = 0.;      // row `component` of the block (v, j)
+        value[block_slots_[k][2 * component + 1]] = 0.;
+      } else {
+        const std::array<std::size_t, 4>& slot = block_slots_[system_.reverse[k]];
+        value[slot[component]] = 0.;                      // column `component` of the block (j, v)
+        value[slot[2 + component]] = 0.;
+      }
+    }
+    rhs_[unknown(v, component)] = 0.;
+  }
+
+  const Sphere_system& system_;
+  std::vector<int> rank_;
+  Eigen::SparseMatrix<double> matrix_;
+  std::vector<std::array<std::size_t, 3>> diagonal_slots_;
+  std::vector<std::array<std::size_t, 4>> block_slots_;
+  std::vector<Vector3> t1_, t2_;
+  Eigen::VectorXd rhs_;
+  bool analyzed_ = false;
+  Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>, Eigen::Upper, Eigen::NaturalOrdering<int>> ldlt_;
+};
+
+} // namespace internal
+} // namespace Spherical_parameterization
+} // namespace CGAL
+
+#endif // CGAL_SPHERICAL_PARAMETERIZATION_INTERNAL_TANGENT_NEWTON_SYSTEM_H
