@@ -20,6 +20,7 @@
 #include <cerrno>
 #include <chrono>
 #include <cmath>
+#include <condition_variable>
 #include <csignal>
 #include <cstdio>
 #include <cstdlib>
@@ -28,8 +29,10 @@
 #include <iomanip>
 #include <iostream>
 #include <limits>
+#include <mutex>
 #include <sstream>
 #include <string>
+#include <thread>
 #include <vector>
 
 namespace SP = CGAL::Spherical_parameterization;
@@ -98,15 +101,37 @@ using Clock = std::chrono::steady_clock;
 
 double seconds_since(Clock::time_point start) { return std::chrono::duration<double>(Clock::now() - start).count(); }
 
+// Ctrl-C: the first one asks the iterations to stop (the best map is written), the second one kills.
+volatile std::sig_atomic_t interrupted = 0;
+extern "C" void on_interrupt(int)
+{
+  interrupted = 1;
+  std::signal(SIGINT, SIG_DFL);
+}
+
 // The progress line on stderr: rewritten in place on a terminal, otherwise at most one line a second.
-// Nothing during the first second, so short runs stay quiet.
+// Nothing during the first second, so short runs stay quiet. Between two reports of the library (stage 1 of
+// a large mesh takes minutes), a thread keeps the elapsed time going on a terminal, and repeats the last line
+// every 30 seconds otherwise.
 class Progress_line {
 public:
   Progress_line(bool enabled, Clock::time_point start)
     : enabled_(enabled), terminal_(enabled && isatty(fileno(stderr))), start_(start)
-  { }
+  {
+    if(enabled_) ticker_ = std::thread([this] { tick(); });
+  }
 
-  void phase(const std::string& what) { show(what); }
+  ~Progress_line()
+  {
+    {
+      std::lock_guard<std::mutex> lock(mutex_);
+      stop_ = true;
+    }
+    wake_.notify_one();
+    if(ticker_.joinable()) ticker_.join();
+  }
+
+  void phase(const std::string& what) { show(what, false); }
 
   bool operator()(const SP::Progress& progress)
   {
@@ -115,13 +140,15 @@ public:
     if(progress.iteration > 0) line << ": iteration " << progress.iteration;
     line << std::setprecision(3) << ", Res " << progress.residual << ", " << progress.non_positive_faces
          << " non-positive faces";
-    show(line.str());
+    show(line.str(), false);
     return true;
   }
 
-  // Erases the line on a terminal before other output.
+  // Erases the line on a terminal before other output, and stops the updates.
   void clear()
   {
+    std::lock_guard<std::mutex> lock(mutex_);
+    current_.clear();
     if(terminal_ && shown_) { std::cerr << "\r\033[K" << std::flush; shown_ = false; }
   }
 
@@ -134,14 +161,19 @@ private:
     return stage;
   }
 
-  void show(const std::string& text)
+  // `repeat`: the ticker shows the current text again, with the time updated.
+  void show(const std::string& text, bool repeat)
   {
     if(!enabled_) return;
+    std::lock_guard<std::mutex> lock(mutex_);
+    if(!repeat) current_ = text;
+    if(current_.empty()) return;
     const double now = seconds_since(start_);
     if(now < 1. || now - last_ < (terminal_ ? 0.1 : 1.)) return;
     last_ = now;
     std::ostringstream line;
-    line << '[' << std::fixed << std::setprecision(1) << std::setw(7) << now << " s] " << text;
+    line << '[' << std::fixed << std::setprecision(1) << std::setw(7) << now << " s] " << current_;
+    if(interrupted) line << " (Ctrl-C: stopping at the next iteration; Ctrl-C again quits)";
     if(terminal_) {
       // A line longer than the terminal would wrap, and only its last row would be rewritten.
       std::string shown = line.str();
@@ -154,19 +186,28 @@ private:
     else std::cerr << line.str() << '\n' << std::flush;
   }
 
+  void tick()
+  {
+    const double period = terminal_ ? 1. : 30.;
+    std::unique_lock<std::mutex> lock(mutex_);
+    while(!stop_) {
+      wake_.wait_for(lock, std::chrono::milliseconds(250));
+      if(stop_ || seconds_since(start_) - last_ < period) continue;
+      lock.unlock();
+      show(std::string(), true);
+      lock.lock();
+    }
+  }
+
   bool enabled_, terminal_;
   Clock::time_point start_;
+  std::mutex mutex_;
+  std::condition_variable wake_;
+  std::thread ticker_;
+  std::string current_;
   double last_ = -1.;
-  bool shown_ = false;
+  bool shown_ = false, stop_ = false;
 };
-
-// Ctrl-C: the first one asks the iterations to stop (the best map is written), the second one kills.
-volatile std::sig_atomic_t interrupted = 0;
-extern "C" void on_interrupt(int)
-{
-  interrupted = 1;
-  std::signal(SIGINT, SIG_DFL);
-}
 
 // --- Minimal JSON output: a fixed set of keys, every figure a number, a string, a boolean or null. ---
 std::string json_string(const std::string& text)
@@ -189,12 +230,18 @@ std::string json_string(const std::string& text)
   return out.str();
 }
 
+// The shortest decimal form that reads back as the same double.
 std::string json_number(double x, bool known = true)
 {
   if(!known || !std::isfinite(x)) return "null";
-  std::ostringstream out;
-  out << std::setprecision(17) << x;
-  return out.str();
+  std::string text;
+  for(int digits = 15; digits <= 17; ++digits) {
+    std::ostringstream out;
+    out << std::setprecision(digits) << x;
+    text = out.str();
+    if(std::strtod(text.c_str(), nullptr) == x) break;
+  }
+  return text;
 }
 
 std::string json_count(std::size_t n, bool known = true) { return known ? std::to_string(n) : "null"; }
@@ -244,6 +291,8 @@ void print_json(std::ostream& out, const SP::Result& r, const Run_figures& run)
       << "}\n";
 }
 
+std::string plural(std::size_t n, const std::string& noun) { return std::to_string(n) + " " + noun + (n == 1 ? "" : "s"); }
+
 void print_text(std::ostream& out, const SP::Result& r, const Run_figures& run)
 {
   out << "input:           " << run.input << " (" << r.number_of_vertices << " vertices, " << r.number_of_faces << " faces)\n"
@@ -257,12 +306,12 @@ void print_text(std::ostream& out, const SP::Result& r, const Run_figures& run)
       << "total area:      " << r.total_signed_area << " (4 pi = 12.5663706144)\n"
       << std::setprecision(3)
       << "stage 1:         initial guess, " << r.initial_guess.seconds << " s, Res " << r.initial_guess.residual << ", "
-      << r.initial_flipped_faces << " non-positive faces, cut loop of " << r.cut_loop_length << " vertices"
+      << plural(r.initial_flipped_faces, "non-positive face") << ", cut loop of " << r.cut_loop_length << " vertices"
       << (r.uniform_initial_guess_fallback ? ", uniform-weight disks" : "") << "\n"
-      << "stage 2:         projected Gauss-Seidel, " << r.gauss_seidel.seconds << " s, " << r.gauss_seidel.iterations
-      << " sweeps, Res " << r.gauss_seidel.residual << "\n"
-      << "stage 3:         Newton, " << r.newton.seconds << " s, " << r.newton.iterations << " iterations, Res "
-      << r.newton.residual << ", " << r.rejected_moves << " moves not taken (stages 2 and 3)\n"
+      << "stage 2:         projected Gauss-Seidel, " << r.gauss_seidel.seconds << " s, "
+      << plural(r.gauss_seidel.iterations, "sweep") << ", Res " << r.gauss_seidel.residual << "\n"
+      << "stage 3:         Newton, " << r.newton.seconds << " s, " << plural(r.newton.iterations, "iteration") << ", Res "
+      << r.newton.residual << ", " << plural(r.rejected_moves, "move") << " not taken (stages 2 and 3)\n"
       << "time:            " << run.total_seconds << " s (read " << run.read_seconds << " s, map " << run.map_seconds
       << " s, write " << run.write_seconds << " s)\n";
   if(!run.output.empty()) out << "written:         " << run.output << "\n";
@@ -289,7 +338,7 @@ std::size_t edit_distance(const std::string& a, const std::string& b)
 std::string closest(const std::string& word, const std::vector<std::string>& choices)
 {
   std::string best;
-  std::size_t best_distance = std::max<std::size_t>(2, word.size() / 3) + 1;
+  std::size_t best_distance = std::max<std::size_t>(2, word.size() / 4) + 1;
   for(const std::string& candidate : choices) {
     const std::size_t d = edit_distance(word, candidate);
     if(d < best_distance || (best.empty() && word.size() >= 3 && candidate.compare(0, word.size(), word) == 0)) {
@@ -464,6 +513,28 @@ Settings parse_arguments(int argc, char** argv)
   return settings;
 }
 
+// An input that does not exist, or is a folder: say so, and name a file of that folder the user may have meant.
+void explain_missing_input(const std::string& input)
+{
+  namespace fs = std::filesystem;
+  std::error_code error;
+  const fs::path path(input);
+  if(fs::is_directory(path, error)) {
+    std::cerr << "error: '" << input << "' is a folder, not a mesh file\n";
+    std::exit(EXIT_IO);
+  }
+  if(fs::exists(path, error)) return;
+  const fs::path folder = path.has_parent_path() ? path.parent_path() : fs::path(".");
+  std::vector<std::string> names;
+  for(fs::directory_iterator it(folder, error), end; !error && it != end; it.increment(error))
+    if(it->is_regular_file(error)) names.push_back(it->path().filename().string());
+  const std::string guess = closest(path.filename().string(), names);
+  std::cerr << "error: no such file: '" << input << "'\n";
+  if(!guess.empty())
+    std::cerr << "       did you mean '" << (path.has_parent_path() ? (folder / guess).string() : guess) << "'?\n";
+  std::exit(EXIT_IO);
+}
+
 std::string default_output(const std::string& input)
 {
   const std::size_t slash = input.find_last_of('/');
@@ -512,6 +583,7 @@ int main(int argc, char** argv)
   const Settings settings = parse_arguments(argc, argv);
   const std::string& input = settings.input;
   const std::string output = settings.output.empty() ? default_output(input) : settings.output;
+  explain_missing_input(input);
   {
     std::error_code error;
     if(std::filesystem::exists(output, error) && std::filesystem::equivalent(input, output, error))

@@ -88,6 +88,8 @@ expect_error "two inputs" 4 "more than one input file" "$bunny" "$bunny"
 cp "$bunny" "$scratch/mine.off"
 expect_error "output overwrites the input" 4 "is the input file" "$scratch/mine.off" -o "$scratch/mine.off"
 cmp -s "$bunny" "$scratch/mine.off" || { echo "FAIL: the input was overwritten"; failures=$((failures + 1)); }
+expect_error "misspelled input" 3 "did you mean '$scratch/mine.off'?" "$scratch/mine.of"
+expect_error "folder as input" 3 "is a folder, not a mesh file" "$scratch"
 expect_error "repeated option" 0 "--tolerance is given more than once" "$bunny" -q -t 1e-3 -t 1e-6 -o "$scratch/twice.off"
 
 # --quiet: nothing on stdout or stderr on success.
