@@ -638,7 +638,7 @@ int main(int argc, char** argv)
                               SP::parameters::max_seconds(settings.max_seconds), SP::parameters::metis_seed(settings.seed),
                               SP::parameters::preserve_bijectivity(settings.backtracking),
                               SP::parameters::nonlinear_solver(settings.solver), SP::parameters::progress_callback(report));
-  progress.phase("stage 1/3, initial guess");
+  progress.phase("input checks, then stage 1/3, initial guess");
   const Clock::time_point map_start = Clock::now();
   const SP::Result result =
       settings.sparse_lu ? SP::spherical_parameterize(mesh, sphere_map, SP::parameters::combine(parameters, CGAL::parameters::sparse_linear_solver(SP::Sparse_LU_disk_solver_traits())))
