@@ -11,7 +11,8 @@ projected Gauss-Seidel iterations (`"gauss-seidel"`) and after every iteration o
 (`"global newton"` or `"local newton"`), from the thread that called `spherical_parameterize()`. It should
 return quickly: on small meshes it is called thousands of times a second.
 
-Returning `false` stops the computation at that point: the status is `Error_code::CANCELLED`, and the map
+Returning `false` stops the computation at that point: the status is `Error_code::CANCELLED` (unless the
+connectivity is provably not inscribable: `Error_code::NO_BALANCED_SOLUTION` takes precedence), and the map
 receives the current iterate, which is certified like any other (`Result::bijective`, `Result::flipped_faces`).
 A lambda, a function pointer or a `std::function<bool(const CGAL::Spherical_parameterization::Progress&)>` are
 models.
