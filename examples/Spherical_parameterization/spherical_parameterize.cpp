@@ -173,7 +173,7 @@ private:
     last_ = now;
     std::ostringstream line;
     line << '[' << std::fixed << std::setprecision(1) << std::setw(7) << now << " s] " << current_;
-    if(interrupted) line << " (Ctrl-C: stopping at the next iteration; Ctrl-C again quits)";
+    if(interrupted) line << " (Ctrl-C: stopping as soon as possible; Ctrl-C again quits)";
     if(terminal_) {
       // A line longer than the terminal would wrap, and only its last row would be rewritten.
       std::string shown = line.str();
@@ -609,6 +609,14 @@ int main(int argc, char** argv)
     std::cerr << "error: cannot read a mesh from '" << input << "' (empty, truncated or not OFF/OBJ/PLY/STL)\n";
     return EXIT_IO;
   }
+  // Ctrl-C before the iterations: nothing to keep, so quit between the steps of the set-up.
+  auto interrupted_early = [&progress] {
+    if(!interrupted) return false;
+    progress.clear();
+    std::cerr << "interrupted (Ctrl-C) before the iterations: nothing written\n";
+    return true;
+  };
+  if(interrupted_early()) return EXIT_INTERRUPTED;
   progress.phase("checking " + std::to_string(points.size()) + " vertices, " + std::to_string(faces.size()) + " faces");
   const SP::Input_check check = SP::check_polygon_soup(points, faces);
   run.read_seconds = seconds_since(start);
@@ -626,10 +634,11 @@ int main(int argc, char** argv)
     }
     return EXIT_BAD_INPUT;
   }
+  if(interrupted_early()) return EXIT_INTERRUPTED;
   progress.phase("building the halfedge mesh");
   Mesh mesh;
   CGAL::Polygon_mesh_processing::polygon_soup_to_polygon_mesh(points, faces, mesh);
-  if(interrupted) { progress.clear(); std::cerr << "interrupted\n"; return EXIT_INTERRUPTED; }
+  if(interrupted_early()) return EXIT_INTERRUPTED;
 
   auto sphere_map = mesh.add_property_map<Mesh::Vertex_index, Point>("v:sphere", Point(0, 0, 0)).first;
   auto report = [&progress](const SP::Progress& p) { return progress(p) && !interrupted; };
