@@ -1,8 +1,9 @@
 // Command line: map a closed genus-0 triangle mesh onto the unit sphere, bijectively.
 //
-//   spherical_parameterize input.(off|obj|ply|stl) [-o sphere.off] [options]
+//   spherical_parameterize input.(off|obj|ply|stl) [-o sphere.off] [options]      (--help for all of them)
 //
 // The output keeps the input's vertex order and face list; coordinates are written with 17 significant digits.
+// stdout: the figures (text, or one JSON object with --json); stderr: progress, warnings and errors.
 
 #include <CGAL/Spherical_parameterization/check_input.h>
 #include <CGAL/Spherical_parameterization/spherical_parameterize.h>
@@ -12,13 +13,26 @@
 #include <CGAL/Polygon_mesh_processing/polygon_soup_to_polygon_mesh.h>
 #include <CGAL/Surface_mesh.h>
 
+#include <sys/ioctl.h>
+#include <unistd.h>
+
+#include <algorithm>
+#include <cerrno>
+#include <chrono>
+#include <cmath>
+#include <condition_variable>
+#include <csignal>
 #include <cstdio>
 #include <cstdlib>
+#include <filesystem>
 #include <fstream>
 #include <iomanip>
 #include <iostream>
+#include <limits>
+#include <mutex>
 #include <sstream>
 #include <string>
+#include <thread>
 #include <vector>
 
 namespace SP = CGAL::Spherical_parameterization;
@@ -28,36 +42,504 @@ using Mesh = CGAL::Surface_mesh<Point>;
 
 namespace {
 
-enum Exit_code { EXIT_OK = 0, EXIT_NOT_SOLVED = 1, EXIT_BAD_INPUT = 2, EXIT_IO = 3, EXIT_USAGE = 4 };
+enum Exit_code { EXIT_OK = 0, EXIT_NOT_SOLVED = 1, EXIT_BAD_INPUT = 2, EXIT_IO = 3, EXIT_USAGE = 4, EXIT_INTERRUPTED = 130 };
+
+const char* const synopsis = "Usage: spherical_parameterize INPUT [-o OUTPUT] [options]\n";
 
 void print_usage(std::ostream& out)
 {
-  out << "Usage: spherical_parameterize INPUT [-o OUTPUT] [options]\n"
-         "Maps a closed, connected, genus-0 triangle mesh onto the unit sphere, bijectively\n"
-         "(Saba, Yavneh, Gotsman, Sheffer: Practical Spherical Embedding of Manifold Triangle Meshes).\n\n"
+  out << synopsis
+      << "Maps a closed, connected, genus-0 triangle mesh onto the unit sphere, bijectively\n"
+         "(Saba, Yavneh, Gotsman, Sheffer: Practical Spherical Embedding of Manifold Triangle Meshes).\n"
+         "Success means certified: every spherical triangle is positively oriented (exact predicate),\n"
+         "their areas add up to 4 pi, and the paper's residual Res is below the tolerance.\n"
+         "\n"
+         "Input and output:\n"
          "  INPUT                 a mesh CGAL can read: .off, .obj, .ply, .stl\n"
-         "  -o, --output FILE     where to write the sphere mesh (.off or .ply), same vertex order and faces\n"
-         "                        (default: INPUT's name with _sphere.off)\n"
-         "  -w, --weights W       uniform (default, Tutte), cotangent (conformal), mean_value\n"
-         "  -t, --tolerance T     stop when the paper's residual Res < T (default 1e-6)\n"
-         "  -s, --solver S        stage 3: global (Newton on all vertices, default) or local (the paper's)\n"
+         "  -o, --output FILE     the sphere mesh, .off or .ply: the input's vertices in the same order and its\n"
+         "                        faces, 17 significant digits (default: INPUT without extension + _sphere.off)\n"
+         "\n"
+         "Method:\n"
+         "  -w, --weights W       uniform (default; Tutte weights, covered by the theory, most robust),\n"
+         "                        cotangent (angle preserving; may be negative, may not converge),\n"
+         "                        mean_value (angle preserving; not symmetric: a least-squares solution)\n"
+         "      --admissible-weights  solve with the closest symmetric positive weights instead (the mean of\n"
+         "                        w_ij and w_ji, negative ones raised): the theory's case, for cotangent and\n"
+         "                        mean_value weights that fail\n"
+         "  -t, --tolerance T     stop when Res < T (default 1e-6)\n"
+         "  -s, --solver S        stage 3: global (Newton on all vertices at once, default) or local (the paper's)\n"
          "      --disk-solver D   linear solver of the disk stage: amg (default) or sparse_lu (Eigen)\n"
-         "      --max-seconds S   time budget of the iterations (default: none)\n"
-         "      --seed N          METIS seed (default 0); equal seeds give identical output\n"
+         "      --max-seconds S   time budget of the iterations, S > 0 (default: none)\n"
+         "      --seed N          METIS seed, an integer (default 0); the same seed gives the same output\n"
          "      --no-backtracking let moves fold triangles (the paper's plain iterations; for experiments)\n"
-         "  -q, --quiet           print nothing but errors\n"
-         "  -h, --help            this text\n\n"
-         "Exit status: 0 success (converged and certified bijective), 1 not converged or not bijective,\n"
-         "2 invalid mesh, 3 file error, 4 usage error.\n";
+         "\n"
+         "What is printed:\n"
+         "  -q, --quiet           nothing but errors (and the JSON object with --json)\n"
+         "      --json            the figures as one JSON object on stdout instead of text\n"
+         "  -h, --help            this text\n"
+         "Progress goes to stderr once a run takes more than a second: stage, iteration, Res, non-positive\n"
+         "faces, elapsed time; on a terminal as one line rewritten in place, otherwise at most a line a second.\n"
+         "Ctrl-C stops the iterations and writes the best map so far (exit 1); a second Ctrl-C quits at once.\n"
+         "Options also take the form --option=VALUE.\n"
+         "\n"
+         "Examples:\n"
+         "  spherical_parameterize bunny.off                        writes bunny_sphere.off\n"
+         "  spherical_parameterize brain.obj -o brain_sphere.ply -w cotangent -t 1e-8\n"
+         "  spherical_parameterize large.off --max-seconds 600 --json > figures.json\n"
+         "\n"
+         "JSON object (--json), printed when the mesh was read (exit 0, 1 or 2); a figure not computed is null:\n"
+         "  format (\"spherical_parameterize/1\"), input, output (null if nothing written), status (e.g. \"OK\",\n"
+         "  \"GENUS_NOT_ZERO\"), success, message, vertices, faces, weights, tolerance, residual (Res),\n"
+         "  max_tangential_residual, flipped_faces, total_signed_area, bijective, initial_flipped_faces,\n"
+         "  uniform_initial_guess_fallback, admissible_weights, clamped_weights, rejected_moves, separator_size, cut_loop_length,\n"
+         "  stages.{initial_guess,gauss_seidel,newton}.{seconds,iterations,residual},\n"
+         "  seconds.{read,map,write,total}.\n"
+         "\n"
+         "Exit status: 0 success (converged and certified bijective); 1 not converged or not bijective (the\n"
+         "best map found is written); 2 invalid mesh (nothing written); 3 file error; 4 usage error;\n"
+         "130 interrupted before the iterations.\n";
 }
 
-bool parse_weights(const std::string& name, SP::Weighting& weighting)
+using Clock = std::chrono::steady_clock;
+
+double seconds_since(Clock::time_point start) { return std::chrono::duration<double>(Clock::now() - start).count(); }
+
+// Ctrl-C: the first one asks the iterations to stop (the best map is written), the second one kills.
+volatile std::sig_atomic_t interrupted = 0;
+extern "C" void on_interrupt(int)
 {
-  if(name == "uniform" || name == "tutte") weighting = SP::Weighting::UNIFORM;
-  else if(name == "cotangent" || name == "conformal") weighting = SP::Weighting::COTANGENT;
-  else if(name == "mean_value" || name == "mean-value" || name == "mvc") weighting = SP::Weighting::MEAN_VALUE;
-  else return false;
-  return true;
+  interrupted = 1;
+  std::signal(SIGINT, SIG_DFL);
+}
+
+// The progress line on stderr: rewritten in place on a terminal, otherwise at most one line a second.
+// Nothing during the first second, so short runs stay quiet. Between two reports of the library (stage 1 of
+// a large mesh takes minutes), a thread keeps the elapsed time going on a terminal, and repeats the last line
+// every 30 seconds otherwise.
+class Progress_line {
+public:
+  Progress_line(bool enabled, Clock::time_point start)
+    : enabled_(enabled), terminal_(enabled && isatty(fileno(stderr))), start_(start)
+  {
+    if(enabled_) ticker_ = std::thread([this] { tick(); });
+  }
+
+  ~Progress_line()
+  {
+    {
+      std::lock_guard<std::mutex> lock(mutex_);
+      stop_ = true;
+    }
+    wake_.notify_one();
+    if(ticker_.joinable()) ticker_.join();
+  }
+
+  void phase(const std::string& what) { show(what, false); }
+
+  bool operator()(const SP::Progress& progress)
+  {
+    std::ostringstream line;
+    line << stage_label(progress.stage);
+    if(progress.iteration > 0) line << ": iteration " << progress.iteration;
+    line << std::setprecision(3) << ", Res " << progress.residual << ", " << progress.non_positive_faces
+         << " non-positive faces";
+    show(line.str(), false);
+    return true;
+  }
+
+  // Erases the line on a terminal before other output, and stops the updates.
+  void clear()
+  {
+    std::lock_guard<std::mutex> lock(mutex_);
+    current_.clear();
+    if(terminal_ && shown_) { std::cerr << "\r\033[K" << std::flush; shown_ = false; }
+  }
+
+private:
+  static std::string stage_label(const std::string& stage)
+  {
+    if(stage == "initial guess") return "stage 1/3, initial guess";
+    if(stage == "gauss-seidel") return "stage 2/3, projected Gauss-Seidel";
+    if(stage == "global newton" || stage == "local newton") return "stage 3/3, " + stage;
+    return stage;
+  }
+
+  // `repeat`: the ticker shows the current text again, with the time updated.
+  void show(const std::string& text, bool repeat)
+  {
+    if(!enabled_) return;
+    std::lock_guard<std::mutex> lock(mutex_);
+    if(!repeat) current_ = text;
+    if(current_.empty()) return;
+    const double now = seconds_since(start_);
+    if(now < 1. || now - last_ < (terminal_ ? 0.1 : 1.)) return;
+    last_ = now;
+    std::ostringstream line;
+    line << '[' << std::fixed << std::setprecision(1) << std::setw(7) << now << " s] " << current_;
+    if(interrupted) line << " (Ctrl-C: stopping as soon as possible; Ctrl-C again quits)";
+    if(terminal_) {
+      // A line longer than the terminal would wrap, and only its last row would be rewritten.
+      std::string shown = line.str();
+      winsize size{};
+      if(ioctl(fileno(stderr), TIOCGWINSZ, &size) == 0 && size.ws_col > 1 && shown.size() >= size.ws_col)
+        shown.resize(size.ws_col - 1u);
+      std::cerr << "\r\033[K" << shown << std::flush;
+      shown_ = true;
+    }
+    else std::cerr << line.str() << '\n' << std::flush;
+  }
+
+  void tick()
+  {
+    const double period = terminal_ ? 1. : 30.;
+    std::unique_lock<std::mutex> lock(mutex_);
+    while(!stop_) {
+      wake_.wait_for(lock, std::chrono::milliseconds(250));
+      if(stop_ || seconds_since(start_) - last_ < period) continue;
+      lock.unlock();
+      show(std::string(), true);
+      lock.lock();
+    }
+  }
+
+  bool enabled_, terminal_;
+  Clock::time_point start_;
+  std::mutex mutex_;
+  std::condition_variable wake_;
+  std::thread ticker_;
+  std::string current_;
+  double last_ = -1.;
+  bool shown_ = false, stop_ = false;
+};
+
+// --- Minimal JSON output: a fixed set of keys, every figure a number, a string, a boolean or null. ---
+std::string json_string(const std::string& text)
+{
+  std::ostringstream out;
+  out << '"';
+  for(unsigned char c : text) {
+    switch(c) {
+      case '"': out << "\\\""; break;
+      case '\\': out << "\\\\"; break;
+      case '\n': out << "\\n"; break;
+      case '\t': out << "\\t"; break;
+      case '\r': out << "\\r"; break;
+      default:
+        if(c < 0x20) out << "\\u" << std::hex << std::setw(4) << std::setfill('0') << int(c) << std::dec << std::setfill(' ');
+        else out << c;
+    }
+  }
+  out << '"';
+  return out.str();
+}
+
+// The shortest decimal form that reads back as the same double.
+std::string json_number(double x, bool known = true)
+{
+  if(!known || !std::isfinite(x)) return "null";
+  std::string text;
+  for(int digits = 15; digits <= 17; ++digits) {
+    std::ostringstream out;
+    out << std::setprecision(digits) << x;
+    text = out.str();
+    if(std::strtod(text.c_str(), nullptr) == x) break;
+  }
+  return text;
+}
+
+std::string json_count(std::size_t n, bool known = true) { return known ? std::to_string(n) : "null"; }
+
+struct Run_figures {
+  std::string input, output;  // output empty: nothing written
+  std::string weights;
+  double tolerance = 1e-6;
+  double read_seconds = 0., map_seconds = 0., write_seconds = 0., total_seconds = 0.;
+};
+
+void print_json(std::ostream& out, const SP::Result& r, const Run_figures& run)
+{
+  const bool computed = r.residual >= 0.;  // the iterations ran (not an input or set-up error)
+  auto stage = [](const SP::Stage_statistics& s) {
+    return "{\"seconds\": " + json_number(s.seconds) + ", \"iterations\": " + json_count(s.iterations) +
+           ", \"residual\": " + json_number(s.residual, s.residual >= 0.) + "}";
+  };
+  out << "{\n"
+      << "  \"format\": \"spherical_parameterize/1\",\n"
+      << "  \"input\": " << json_string(run.input) << ",\n"
+      << "  \"output\": " << (run.output.empty() ? std::string("null") : json_string(run.output)) << ",\n"
+      << "  \"status\": " << json_string(SP::get_error_name(r.status)) << ",\n"
+      << "  \"success\": " << (r.status == SP::Error_code::OK ? "true" : "false") << ",\n"
+      << "  \"message\": " << json_string(r.message) << ",\n"
+      << "  \"vertices\": " << r.number_of_vertices << ",\n"
+      << "  \"faces\": " << r.number_of_faces << ",\n"
+      << "  \"weights\": " << json_string(run.weights) << ",\n"
+      << "  \"tolerance\": " << json_number(run.tolerance) << ",\n"
+      << "  \"residual\": " << json_number(r.residual, computed) << ",\n"
+      << "  \"max_tangential_residual\": " << json_number(r.max_tangential_residual, computed) << ",\n"
+      << "  \"flipped_faces\": " << json_count(r.flipped_faces, computed) << ",\n"
+      << "  \"total_signed_area\": " << json_number(r.total_signed_area, computed) << ",\n"
+      << "  \"bijective\": " << (r.bijective ? "true" : "false") << ",\n"
+      << "  \"initial_flipped_faces\": " << json_count(r.initial_flipped_faces, computed) << ",\n"
+      << "  \"uniform_initial_guess_fallback\": " << (r.uniform_initial_guess_fallback ? "true" : "false") << ",\n"
+      << "  \"admissible_weights\": " << (r.admissible_weights ? "true" : "false") << ",\n"
+      << "  \"clamped_weights\": " << r.clamped_weights << ",\n"
+      << "  \"rejected_moves\": " << json_count(r.rejected_moves, computed) << ",\n"
+      << "  \"separator_size\": " << json_count(r.separator_size, computed) << ",\n"
+      << "  \"cut_loop_length\": " << json_count(r.cut_loop_length, computed) << ",\n"
+      << "  \"stages\": {\n"
+      << "    \"initial_guess\": " << stage(r.initial_guess) << ",\n"
+      << "    \"gauss_seidel\": " << stage(r.gauss_seidel) << ",\n"
+      << "    \"newton\": " << stage(r.newton) << "\n"
+      << "  },\n"
+      << "  \"seconds\": {\"read\": " << json_number(run.read_seconds) << ", \"map\": " << json_number(run.map_seconds)
+      << ", \"write\": " << json_number(run.write_seconds) << ", \"total\": " << json_number(run.total_seconds) << "}\n"
+      << "}\n";
+}
+
+std::string plural(std::size_t n, const std::string& noun) { return std::to_string(n) + " " + noun + (n == 1 ? "" : "s"); }
+
+void print_text(std::ostream& out, const SP::Result& r, const Run_figures& run)
+{
+  out << "input:           " << run.input << " (" << r.number_of_vertices << " vertices, " << r.number_of_faces << " faces)\n"
+      << "status:          " << SP::get_error_name(r.status) << ": " << r.message << "\n";
+  if(r.residual < 0.) return;
+  out << std::setprecision(4)
+      << "Res (paper):     " << r.residual << " (tolerance " << run.tolerance << ", " << run.weights << " weights)\n"
+      << "max tangential:  " << r.max_tangential_residual << "\n"
+      << "flipped faces:   " << r.flipped_faces << " (exact orientation test)\n"
+      << std::setprecision(12)
+      << "total area:      " << r.total_signed_area << " (4 pi = 12.5663706144)\n"
+      << std::setprecision(3)
+      << "stage 1:         initial guess, " << r.initial_guess.seconds << " s, Res " << r.initial_guess.residual << ", "
+      << plural(r.initial_flipped_faces, "non-positive face") << ", cut loop of " << r.cut_loop_length << " vertices"
+      << (r.uniform_initial_guess_fallback ? ", uniform-weight disks" : "") << "\n"
+      << "stage 2:         projected Gauss-Seidel, " << r.gauss_seidel.seconds << " s, "
+      << plural(r.gauss_seidel.iterations, "sweep") << ", Res " << r.gauss_seidel.residual << "\n"
+      << "stage 3:         Newton, " << r.newton.seconds << " s, " << plural(r.newton.iterations, "iteration") << ", Res "
+      << r.newton.residual << ", " << plural(r.rejected_moves, "move") << " not taken (stages 2 and 3)\n"
+      << "time:            " << run.total_seconds << " s (read " << run.read_seconds << " s, map " << run.map_seconds
+      << " s, write " << run.write_seconds << " s)\n";
+  if(!run.output.empty()) out << "written:         " << run.output << "\n";
+}
+
+// --- Command-line parsing, with a suggestion for every mistake. ---
+std::size_t edit_distance(const std::string& a, const std::string& b)
+{
+  std::vector<std::size_t> row(b.size() + 1);
+  for(std::size_t j = 0; j <= b.size(); ++j) row[j] = j;
+  for(std::size_t i = 1; i <= a.size(); ++i) {
+    std::size_t diagonal = row[0];
+    row[0] = i;
+    for(std::size_t j = 1; j <= b.size(); ++j) {
+      const std::size_t up = row[j];
+      row[j] = (std::min)({row[j] + 1, row[j - 1] + 1, diagonal + (a[i - 1] == b[j - 1] ? 0 : 1)});
+      diagonal = up;
+    }
+  }
+  return row[b.size()];
+}
+
+// The closest of `choices` to `word` if it is close enough to be a typo, or a choice that `word` starts.
+std::string closest(const std::string& word, const std::vector<std::string>& choices)
+{
+  std::string best;
+  std::size_t best_distance = std::max<std::size_t>(2, word.size() / 4) + 1;
+  for(const std::string& candidate : choices) {
+    const std::size_t d = edit_distance(word, candidate);
+    if(d < best_distance || (best.empty() && word.size() >= 3 && candidate.compare(0, word.size(), word) == 0)) {
+      best = candidate;
+      best_distance = (std::min)(d, best_distance);
+    }
+  }
+  return best;
+}
+
+[[noreturn]] void usage_error(const std::string& message, const std::string& hint = std::string())
+{
+  std::cerr << "error: " << message << "\n";
+  if(!hint.empty()) std::cerr << "       " << hint << "\n";
+  std::cerr << synopsis << "Try 'spherical_parameterize --help' for the options.\n";
+  std::exit(EXIT_USAGE);
+}
+
+struct Option {
+  const char* short_name;  // "" if none
+  const char* long_name;
+  const char* value;       // what the value is, nullptr for a flag
+};
+
+const Option options[] = {
+  {"-o", "--output", "a file name ending in .off or .ply"},
+  {"-w", "--weights", "uniform, cotangent or mean_value"},
+  {"-t", "--tolerance", "a positive number such as 1e-6"},
+  {"-s", "--solver", "global or local"},
+  {"", "--disk-solver", "amg or sparse_lu"},
+  {"", "--max-seconds", "a positive number of seconds"},
+  {"", "--seed", "an integer"},
+  {"", "--no-backtracking", nullptr},
+  {"", "--admissible-weights", nullptr},
+  {"-q", "--quiet", nullptr},
+  {"", "--json", nullptr},
+  {"-h", "--help", nullptr},
+};
+
+const Option* find_option(const std::string& name)
+{
+  for(const Option& o : options)
+    if(name == o.long_name || (o.short_name[0] != '\0' && name == o.short_name)) return &o;
+  return nullptr;
+}
+
+// A named value out of a fixed set (weights, solvers); the suggestion names the closest one.
+std::string choice(const std::string& option, const std::string& value, const std::vector<std::string>& names,
+                   const std::vector<std::string>& aliases = {})
+{
+  for(const std::string& n : names) if(value == n) return n;
+  for(std::size_t i = 0; i + 1 < aliases.size(); i += 2) if(value == aliases[i]) return aliases[i + 1];
+  std::string list;
+  for(const std::string& n : names) list += (list.empty() ? "" : ", ") + n;
+  const std::string guess = closest(value, names);
+  usage_error("unknown value '" + value + "' for " + option + " (one of: " + list + ")",
+              guess.empty() ? std::string() : "did you mean '" + guess + "'?");
+}
+
+double positive_number(const std::string& option, const std::string& text)
+{
+  char* end = nullptr;
+  const double x = std::strtod(text.c_str(), &end);
+  if(text.empty() || end != text.c_str() + text.size())
+    usage_error(option + " expects a number, got '" + text + "'");
+  if(!std::isfinite(x) || !(x > 0.))
+    usage_error(option + " must be a positive finite number, got '" + text + "'");
+  return x;
+}
+
+int integer(const std::string& option, const std::string& text)
+{
+  char* end = nullptr;
+  errno = 0;
+  const long x = std::strtol(text.c_str(), &end, 10);
+  if(text.empty() || end != text.c_str() + text.size())
+    usage_error(option + " expects an integer, got '" + text + "'");
+  if(errno == ERANGE || x < std::numeric_limits<int>::min() || x > std::numeric_limits<int>::max())
+    usage_error(option + " is out of range: '" + text + "'");
+  return static_cast<int>(x);
+}
+
+bool ends_with(const std::string& s, const std::string& suffix)
+{
+  return s.size() >= suffix.size() && s.compare(s.size() - suffix.size(), suffix.size(), suffix) == 0;
+}
+
+struct Settings {
+  std::string input, output;
+  std::string weights_name = "uniform";
+  SP::Weighting weighting = SP::Weighting::UNIFORM;
+  double tolerance = 1e-6, max_seconds = -1.;
+  int seed = 0;
+  bool quiet = false, json = false, backtracking = true, sparse_lu = false, admissible = false;
+  SP::Nonlinear_solver solver = SP::Nonlinear_solver::GLOBAL_NEWTON;
+};
+
+Settings parse_arguments(int argc, char** argv)
+{
+  Settings settings;
+  std::vector<std::string> given;
+  bool only_files = false;  // after "--"
+  for(int a = 1; a < argc; ++a) {
+    const std::string arg = argv[a];
+    if(only_files || arg.empty() || arg[0] != '-' || arg == "-") {
+      if(settings.input.empty()) settings.input = arg;
+      else usage_error("more than one input file ('" + settings.input + "', '" + arg + "')",
+                       "one mesh per run; the output is set with -o FILE");
+      continue;
+    }
+    if(arg == "--") { only_files = true; continue; }
+
+    // --name=value
+    std::string name = arg, attached;
+    bool has_attached = false;
+    const std::size_t equal = arg.find('=');
+    if(arg.compare(0, 2, "--") == 0 && equal != std::string::npos) {
+      name = arg.substr(0, equal);
+      attached = arg.substr(equal + 1);
+      has_attached = true;
+    }
+    const Option* option = find_option(name);
+    if(option == nullptr) {
+      std::vector<std::string> names;
+      for(const Option& o : options) names.push_back(o.long_name);
+      // "-tolerance" for "--tolerance", or a typo
+      std::string guess = (name.size() > 2 && name[1] != '-' && find_option("-" + name)) ? "-" + name : closest(name, names);
+      usage_error("unknown option '" + name + "'", guess.empty() ? std::string() : "did you mean '" + guess + "'?");
+    }
+    const std::string canonical = option->long_name;
+    if(std::find(given.begin(), given.end(), canonical) != given.end() && canonical != "--quiet" && canonical != "--json")
+      std::cerr << "warning: " << canonical << " is given more than once; the last one counts\n";
+    given.push_back(canonical);
+
+    std::string value;
+    if(option->value == nullptr) {
+      if(has_attached) usage_error(canonical + " takes no value, got '" + attached + "'");
+    } else if(has_attached) {
+      value = attached;
+    } else {
+      if(a + 1 >= argc) usage_error(name + " needs a value: " + option->value);
+      value = argv[++a];
+      // "-o -q": the value is missing, not a file named "-q".
+      if(value.size() > 1 && value[0] == '-' && find_option(value.substr(0, value.find('='))) != nullptr)
+        usage_error(name + " needs a value (" + option->value + "), got the option '" + value + "'");
+    }
+    if(option->value != nullptr && value.empty()) usage_error(name + " needs a value: " + option->value);
+
+    if(canonical == "--help") { print_usage(std::cout); std::exit(EXIT_OK); }
+    else if(canonical == "--output") {
+      if(!ends_with(value, ".off") && !ends_with(value, ".ply"))
+        usage_error("cannot write '" + value + "': the output is an .off or .ply file");
+      settings.output = value;
+    }
+    else if(canonical == "--weights") {
+      settings.weights_name = choice(canonical, value, {"uniform", "cotangent", "mean_value"},
+                                     {"tutte", "uniform", "conformal", "cotangent", "mean-value", "mean_value", "mvc", "mean_value"});
+      settings.weighting = settings.weights_name == "uniform" ? SP::Weighting::UNIFORM
+                         : settings.weights_name == "cotangent" ? SP::Weighting::COTANGENT : SP::Weighting::MEAN_VALUE;
+    }
+    else if(canonical == "--tolerance") settings.tolerance = positive_number(name, value);
+    else if(canonical == "--max-seconds") settings.max_seconds = positive_number(name, value);
+    else if(canonical == "--seed") settings.seed = integer(name, value);
+    else if(canonical == "--solver")
+      settings.solver = choice(canonical, value, {"global", "local"}) == "local" ? SP::Nonlinear_solver::LOCAL_NEWTON
+                                                                              : SP::Nonlinear_solver::GLOBAL_NEWTON;
+    else if(canonical == "--disk-solver") settings.sparse_lu = choice(canonical, value, {"amg", "sparse_lu"}) == "sparse_lu";
+    else if(canonical == "--no-backtracking") settings.backtracking = false;
+    else if(canonical == "--admissible-weights") settings.admissible = true;
+    else if(canonical == "--quiet") settings.quiet = true;
+    else if(canonical == "--json") settings.json = true;
+  }
+  if(settings.input.empty()) usage_error("no input mesh given");
+  return settings;
+}
+
+// An input that does not exist, or is a folder: say so, and name a file of that folder the user may have meant.
+void explain_missing_input(const std::string& input)
+{
+  namespace fs = std::filesystem;
+  std::error_code error;
+  const fs::path path(input);
+  if(fs::is_directory(path, error)) {
+    std::cerr << "error: '" << input << "' is a folder, not a mesh file\n";
+    std::exit(EXIT_IO);
+  }
+  if(fs::exists(path, error)) return;
+  const fs::path folder = path.has_parent_path() ? path.parent_path() : fs::path(".");
+  std::vector<std::string> names;
+  for(fs::directory_iterator it(folder, error), end; !error && it != end; it.increment(error))
+    if(it->is_regular_file(error)) names.push_back(it->path().filename().string());
+  const std::string guess = closest(path.filename().string(), names);
+  std::cerr << "error: no such file: '" << input << "'\n";
+  if(!guess.empty())
+    std::cerr << "       did you mean '" << (path.has_parent_path() ? (folder / guess).string() : guess) << "'?\n";
+  std::exit(EXIT_IO);
 }
 
 std::string default_output(const std::string& input)
@@ -66,11 +548,6 @@ std::string default_output(const std::string& input)
   const std::size_t dot = input.find_last_of('.');
   const std::string stem = (dot != std::string::npos && (slash == std::string::npos || dot > slash)) ? input.substr(0, dot) : input;
   return stem + "_sphere.off";
-}
-
-bool ends_with(const std::string& s, const std::string& suffix)
-{
-  return s.size() >= suffix.size() && s.compare(s.size() - suffix.size(), suffix.size(), suffix) == 0;
 }
 
 // Writes to a temporary file next to `path`, then renames it: a failure never leaves a half-written file.
@@ -109,61 +586,25 @@ bool write_sphere(const std::string& path, const std::vector<Point>& sphere, con
 
 int main(int argc, char** argv)
 {
-  std::string input, output;
-  SP::Weighting weighting = SP::Weighting::UNIFORM;
-  double tolerance = 1e-6, max_seconds = -1.;
-  int seed = 0;
-  bool quiet = false, backtracking = true;
-  SP::Nonlinear_solver solver = SP::Nonlinear_solver::GLOBAL_NEWTON;
-  bool sparse_lu = false;
-
-  for(int a = 1; a < argc; ++a) {
-    const std::string arg = argv[a];
-    auto value = [&](const char* what) -> std::string {
-      if(a + 1 >= argc) { std::cerr << "error: " << arg << " needs " << what << "\n"; std::exit(EXIT_USAGE); }
-      return argv[++a];
-    };
-    auto number = [&](const char* what) -> double {
-      const std::string text = value(what);
-      char* end = nullptr;
-      const double x = std::strtod(text.c_str(), &end);
-      if(end == text.c_str() || *end != '\0') { std::cerr << "error: " << arg << " expects " << what << ", got '" << text << "'\n"; std::exit(EXIT_USAGE); }
-      return x;
-    };
-    if(arg == "-h" || arg == "--help") { print_usage(std::cout); return EXIT_OK; }
-    else if(arg == "-o" || arg == "--output") output = value("a file name");
-    else if(arg == "-w" || arg == "--weights") {
-      const std::string name = value("uniform, cotangent or mean_value");
-      if(!parse_weights(name, weighting)) { std::cerr << "error: unknown weights '" << name << "' (uniform, cotangent, mean_value)\n"; return EXIT_USAGE; }
-    }
-    else if(arg == "-t" || arg == "--tolerance") {
-      tolerance = number("a positive number");
-      if(!(tolerance > 0.)) { std::cerr << "error: the tolerance must be positive\n"; return EXIT_USAGE; }
-    }
-    else if(arg == "--max-seconds") max_seconds = number("a number of seconds");
-    else if(arg == "--seed") seed = static_cast<int>(number("an integer"));
-    else if(arg == "-q" || arg == "--quiet") quiet = true;
-    else if(arg == "--no-backtracking") backtracking = false;
-    else if(arg == "--disk-solver") {
-      const std::string name = value("amg or sparse_lu");
-      if(name == "amg") sparse_lu = false;
-      else if(name == "sparse_lu") sparse_lu = true;
-      else { std::cerr << "error: unknown disk solver '" << name << "' (amg, sparse_lu)\n"; return EXIT_USAGE; }
-    }
-    else if(arg == "-s" || arg == "--solver") {
-      const std::string name = value("global or local");
-      if(name == "global") solver = SP::Nonlinear_solver::GLOBAL_NEWTON;
-      else if(name == "local") solver = SP::Nonlinear_solver::LOCAL_NEWTON;
-      else { std::cerr << "error: unknown solver '" << name << "' (global, local)\n"; return EXIT_USAGE; }
-    }
-    else if(!arg.empty() && arg[0] == '-') { std::cerr << "error: unknown option '" << arg << "' (see --help)\n"; return EXIT_USAGE; }
-    else if(input.empty()) input = arg;
-    else { std::cerr << "error: more than one input file ('" << input << "', '" << arg << "')\n"; return EXIT_USAGE; }
+  const Clock::time_point start = Clock::now();
+  const Settings settings = parse_arguments(argc, argv);
+  const std::string& input = settings.input;
+  const std::string output = settings.output.empty() ? default_output(input) : settings.output;
+  explain_missing_input(input);
+  {
+    std::error_code error;
+    if(std::filesystem::exists(output, error) && std::filesystem::equivalent(input, output, error))
+      usage_error("the output '" + output + "' is the input file", "choose another name with -o FILE");
   }
-  if(input.empty()) { print_usage(std::cerr); return EXIT_USAGE; }
-  if(output.empty()) output = default_output(input);
+  Run_figures run;
+  run.input = input;
+  run.weights = settings.weights_name;
+  run.tolerance = settings.tolerance;
+  Progress_line progress(!settings.quiet, start);
+  std::signal(SIGINT, on_interrupt);
 
   // Read as a polygon soup first: a soup can hold what a halfedge structure refuses, so the error is precise.
+  progress.phase("reading " + input);
   std::vector<Point> points;
   std::vector<std::vector<std::size_t>> faces;
   {
@@ -171,55 +612,84 @@ int main(int argc, char** argv)
     if(!probe) { std::cerr << "error: cannot open '" << input << "'\n"; return EXIT_IO; }
   }
   if(!CGAL::IO::read_polygon_soup(input, points, faces, CGAL::parameters::verbose(false)) || points.empty()) {
+    progress.clear();
     std::cerr << "error: cannot read a mesh from '" << input << "' (empty, truncated or not OFF/OBJ/PLY/STL)\n";
     return EXIT_IO;
   }
+  // Ctrl-C before the iterations: nothing to keep, so quit between the steps of the set-up.
+  auto interrupted_early = [&progress] {
+    if(!interrupted) return false;
+    progress.clear();
+    std::cerr << "interrupted (Ctrl-C) before the iterations: nothing written\n";
+    return true;
+  };
+  if(interrupted_early()) return EXIT_INTERRUPTED;
+  progress.phase("checking " + std::to_string(points.size()) + " vertices, " + std::to_string(faces.size()) + " faces");
   const SP::Input_check check = SP::check_polygon_soup(points, faces);
+  run.read_seconds = seconds_since(start);
   if(!check) {
+    progress.clear();
     std::cerr << "error: " << input << ": " << check.message << " [" << SP::get_error_name(check.status) << "]\n";
+    if(settings.json) {
+      SP::Result rejected;
+      rejected.status = check.status;
+      rejected.message = check.message;
+      rejected.number_of_vertices = points.size();
+      rejected.number_of_faces = faces.size();
+      run.total_seconds = seconds_since(start);
+      print_json(std::cout, rejected, run);
+    }
     return EXIT_BAD_INPUT;
   }
+  if(interrupted_early()) return EXIT_INTERRUPTED;
+  progress.phase("building the halfedge mesh");
   Mesh mesh;
   CGAL::Polygon_mesh_processing::polygon_soup_to_polygon_mesh(points, faces, mesh);
+  if(interrupted_early()) return EXIT_INTERRUPTED;
 
   auto sphere_map = mesh.add_property_map<Mesh::Vertex_index, Point>("v:sphere", Point(0, 0, 0)).first;
-  const auto options =
-      SP::parameters::combine(SP::parameters::weighting(weighting), SP::parameters::tolerance(tolerance),
-                              SP::parameters::max_seconds(max_seconds), SP::parameters::metis_seed(seed),
-                              SP::parameters::preserve_bijectivity(backtracking), SP::parameters::nonlinear_solver(solver),
-                              CGAL::parameters::verbose(!quiet));
+  auto report = [&progress](const SP::Progress& p) { return progress(p) && !interrupted; };
+  const auto parameters =
+      SP::parameters::combine(SP::parameters::weighting(settings.weighting), SP::parameters::tolerance(settings.tolerance),
+                              SP::parameters::max_seconds(settings.max_seconds), SP::parameters::metis_seed(settings.seed),
+                              SP::parameters::preserve_bijectivity(settings.backtracking),
+                              SP::parameters::nonlinear_solver(settings.solver), SP::parameters::progress_callback(report),
+                              SP::parameters::admissible_weights(settings.admissible));
+  progress.phase("input checks, then stage 1/3, initial guess");
+  const Clock::time_point map_start = Clock::now();
   const SP::Result result =
-      sparse_lu ? SP::spherical_parameterize(mesh, sphere_map, SP::parameters::combine(options, CGAL::parameters::sparse_linear_solver(SP::Sparse_LU_disk_solver_traits())))
-                : SP::spherical_parameterize(mesh, sphere_map, options);
+      settings.sparse_lu ? SP::spherical_parameterize(mesh, sphere_map, SP::parameters::combine(parameters, CGAL::parameters::sparse_linear_solver(SP::Sparse_LU_disk_solver_traits())))
+                         : SP::spherical_parameterize(mesh, sphere_map, parameters);
+  run.map_seconds = seconds_since(map_start);
+  std::signal(SIGINT, SIG_DFL);
 
-  if(!quiet) {
-    std::cout << "mesh:                   " << input << " (" << result.number_of_vertices << " vertices, " << result.number_of_faces << " faces)\n"
-              << "status:                 " << SP::get_error_name(result.status) << ": " << result.message << "\n"
-              << "Res (paper):            " << result.residual << "\n"
-              << "max tangential residual " << result.max_tangential_residual << "\n"
-              << "flipped faces (exact):  " << result.flipped_faces << "\n"
-              << "total signed area:      " << std::setprecision(12) << result.total_signed_area << " (4 pi = 12.5663706144)\n"
-              << std::setprecision(4)
-              << "initial guess:          " << result.initial_guess.seconds << " s (Res " << result.initial_guess.residual
-              << ", " << result.initial_flipped_faces << " non-positive faces"
-              << (result.uniform_initial_guess_fallback ? ", uniform-weight fallback" : "") << ")\n"
-              << "gauss-seidel:           " << result.gauss_seidel.seconds << " s, " << result.gauss_seidel.iterations << " sweeps\n"
-              << "newton:                 " << result.newton.seconds << " s, " << result.newton.iterations << " sweeps\n"
-              << "moves not taken:        " << result.rejected_moves << "\n"
-              << "total:                  " << result.total_seconds << " s\n";
+  const bool has_map = result.number_of_vertices > 0 && result.residual >= 0.;
+  if(has_map) {
+    progress.phase("writing " + output);
+    const Clock::time_point write_start = Clock::now();
+    std::vector<Point> sphere(points.size());
+    for(Mesh::Vertex_index v : mesh.vertices()) sphere[static_cast<std::size_t>(v)] = sphere_map[v];
+    std::string error;
+    if(!write_sphere(output, sphere, faces, error)) { progress.clear(); std::cerr << "error: " << error << "\n"; return EXIT_IO; }
+    run.output = output;
+    run.write_seconds = seconds_since(write_start);
   }
-  if(result.number_of_vertices == 0 || result.residual < 0.) {
+  run.total_seconds = seconds_since(start);
+  progress.clear();
+  if(settings.json) print_json(std::cout, result, run);
+  else if(!settings.quiet) print_text(std::cout, result, run);
+  std::cout << std::flush;
+
+  if(!has_map) {
     std::cerr << "error: " << result.message << " [" << SP::get_error_name(result.status) << "]\n";
     return result.status == SP::Error_code::OK ? EXIT_NOT_SOLVED : EXIT_BAD_INPUT;
   }
-
-  std::vector<Point> sphere(points.size());
-  for(Mesh::Vertex_index v : mesh.vertices()) sphere[static_cast<std::size_t>(v)] = sphere_map[v];
-  std::string error;
-  if(!write_sphere(output, sphere, faces, error)) { std::cerr << "error: " << error << "\n"; return EXIT_IO; }
-  if(!quiet) std::cout << "written:                " << output << "\n";
   if(result.status != SP::Error_code::OK) {
-    std::cerr << "error: " << result.message << " [" << SP::get_error_name(result.status) << "]\n";
+    if(result.status == SP::Error_code::CANCELLED && interrupted)
+      std::cerr << "error: interrupted (Ctrl-C) [CANCELLED]\n";
+    else
+      std::cerr << "error: " << result.message << " [" << SP::get_error_name(result.status) << "]\n";
+    std::cerr << "       the best map found is written to '" << output << "'\n";
     return EXIT_NOT_SOLVED;
   }
   return EXIT_OK;

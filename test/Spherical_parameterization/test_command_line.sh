@@ -52,5 +52,120 @@ grep -q "NON_MANIFOLD_EDGE" "$scratch/err.txt" || { echo "FAIL: non-manifold mes
 "$tool" "$bunny" -q -o "$scratch/no/such/folder/out.off" 2> /dev/null; check "unwritable output" 3 $?
 ls "$scratch/no/such/folder" > /dev/null 2>&1 && { echo "FAIL: half-written output"; failures=$((failures + 1)); }
 
+# --- The user's side: help, JSON, progress, quiet, and a helpful message for each mistake. ---
+expect_error() { # description, expected exit code, text stderr must contain, arguments...
+  local what=$1 code=$2 text=$3; shift 3
+  "$tool" "$@" > "$scratch/out.txt" 2> "$scratch/err.txt"
+  local status=$?
+  if [ "$status" -ne "$code" ]; then echo "FAIL: $what (exit $status, expected $code)"; failures=$((failures + 1)); return; fi
+  if ! grep -qF -- "$text" "$scratch/err.txt"; then
+    echo "FAIL: $what: stderr lacks '$text':"; cat "$scratch/err.txt"; failures=$((failures + 1)); return
+  fi
+  echo "ok: $what"
+}
+
+# --help names every option, shows examples, the JSON keys and the exit codes.
+for text in --output --weights --tolerance --solver --disk-solver --max-seconds --seed --no-backtracking --admissible-weights --quiet --json \
+            --help Examples: "Exit status" max_tangential_residual mean_value cotangent; do
+  grep -qF -- "$text" "$scratch/help.txt" || { echo "FAIL: --help does not mention $text"; failures=$((failures + 1)); }
+done
+"$tool" -h | cmp -s - "$scratch/help.txt" || { echo "FAIL: -h differs from --help"; failures=$((failures + 1)); }
+
+expect_error "no input" 4 "no input mesh given"
+expect_error "unknown option with a suggestion" 4 "did you mean '--tolerance'?" "$bunny" --tolerence 1e-7
+expect_error "single-dash long option" 4 "did you mean '--seed'?" "$bunny" -seed 3
+expect_error "missing value" 4 "-o needs a value" "$bunny" -o
+expect_error "option instead of a value" 4 "got the option '-q'" "$bunny" -o -q
+expect_error "not a number" 4 "expects a number, got 'abc'" "$bunny" -t abc
+expect_error "negative tolerance" 4 "must be a positive finite number" "$bunny" --tolerance=-1
+expect_error "infinite time budget" 4 "must be a positive finite number" "$bunny" --max-seconds inf
+expect_error "seed not an integer" 4 "expects an integer, got '1.5'" "$bunny" --seed 1.5
+expect_error "misspelled weights" 4 "did you mean 'cotangent'?" "$bunny" -w cotangnet
+expect_error "unknown solver" 4 "one of: global, local" "$bunny" --solver newton
+expect_error "flag with a value" 4 "--quiet takes no value" "$bunny" --quiet=yes
+expect_error "unsupported output format" 4 "the output is an .off or .ply file" "$bunny" -o "$scratch/sphere.obj"
+expect_error "two inputs" 4 "more than one input file" "$bunny" "$bunny"
+cp "$bunny" "$scratch/mine.off"
+expect_error "output overwrites the input" 4 "is the input file" "$scratch/mine.off" -o "$scratch/mine.off"
+cmp -s "$bunny" "$scratch/mine.off" || { echo "FAIL: the input was overwritten"; failures=$((failures + 1)); }
+expect_error "misspelled input" 3 "did you mean '$scratch/mine.off'?" "$scratch/mine.of"
+expect_error "folder as input" 3 "is a folder, not a mesh file" "$scratch"
+expect_error "repeated option" 0 "--tolerance is given more than once" "$bunny" -q -t 1e-3 -t 1e-6 -o "$scratch/twice.off"
+
+# --quiet: nothing on stdout or stderr on success.
+"$tool" "$bunny" --quiet -o "$scratch/quiet.off" > "$scratch/out.txt" 2> "$scratch/err.txt"; check "--quiet run" 0 $?
+if [ -s "$scratch/out.txt" ] || [ -s "$scratch/err.txt" ]; then echo "FAIL: --quiet printed something"; failures=$((failures + 1)); fi
+
+# The text summary names the status, the flip count and the output.
+"$tool" "$bunny" -o "$scratch/text.off" > "$scratch/out.txt" 2> /dev/null; check "text summary run" 0 $?
+for text in "status:          OK" "flipped faces:   0" "written:         $scratch/text.off"; do
+  grep -qF -- "$text" "$scratch/out.txt" || { echo "FAIL: summary lacks '$text'"; cat "$scratch/out.txt"; failures=$((failures + 1)); }
+done
+
+# --json on success (with --option=value): one object, every documented key, figures that agree.
+"$tool" "$bunny" --json --tolerance=1e-6 --weights=uniform -o "$scratch/json.off" > "$scratch/good.json" 2> /dev/null
+check "--json run" 0 $?
+# --admissible-weights: cotangent weights made symmetric and positive, reported in the JSON.
+"$tool" "$bunny" --json -w cotangent --admissible-weights -o "$scratch/admissible.off" > "$scratch/admissible.json" 2> /dev/null
+check "--admissible-weights run" 0 $?
+python3 -c "import json,sys; o=json.load(open(sys.argv[1])); assert o['admissible_weights'] is True and o['clamped_weights'] > 0 and o['status'] == 'OK', o" \
+  "$scratch/admissible.json" || { echo "FAIL: --admissible-weights figures"; failures=$((failures + 1)); }
+# --json on an invalid mesh: the same keys, the error status, no output, figures null.
+"$tool" "$shared/bad_input/genus1_rocker-arm.off" --json -o "$scratch/bad.off" > "$scratch/bad.json" 2> /dev/null
+check "--json on an invalid mesh" 2 $?
+python3 - "$scratch/good.json" "$scratch/bad.json" "$scratch/json.off" <<'JSON_CHECK' || failures=$((failures + 1))
+import json, math, os, sys
+keys = {"format", "input", "output", "status", "success", "message", "vertices", "faces", "weights", "tolerance",
+        "residual", "max_tangential_residual", "flipped_faces", "total_signed_area", "bijective",
+        "initial_flipped_faces", "uniform_initial_guess_fallback", "admissible_weights", "clamped_weights",
+        "rejected_moves", "separator_size",
+        "cut_loop_length", "stages", "seconds"}
+good = json.load(open(sys.argv[1]))
+bad = json.load(open(sys.argv[2]))
+for name, o in (("good", good), ("bad", bad)):
+    assert set(o) == keys, "%s: keys differ: %s" % (name, set(o) ^ keys)
+    assert set(o["stages"]) == {"initial_guess", "gauss_seidel", "newton"}, name
+    for s in o["stages"].values():
+        assert set(s) == {"seconds", "iterations", "residual"}, name
+    assert set(o["seconds"]) == {"read", "map", "write", "total"}, name
+    assert o["format"] == "spherical_parameterize/1", name
+assert good["status"] == "OK" and good["success"] is True and good["bijective"] is True, good
+assert good["vertices"] == 1839 and good["faces"] == 3674, good
+assert good["flipped_faces"] == 0 and 0 <= good["residual"] < good["tolerance"] == 1e-6, good
+assert abs(good["total_signed_area"] - 4 * math.pi) < 1e-6, good
+assert good["output"] == sys.argv[3] and os.path.exists(good["output"]), good
+assert abs(good["stages"]["newton"]["residual"] - good["residual"]) <= 1e-9 * good["residual"], good
+assert good["seconds"]["total"] >= good["seconds"]["map"] > 0, good
+assert bad["status"] == "GENUS_NOT_ZERO" and bad["success"] is False and bad["output"] is None, bad
+assert bad["residual"] is None and bad["flipped_faces"] is None and "genus 1" in bad["message"], bad
+assert not os.path.exists(os.path.join(os.path.dirname(sys.argv[3]), "bad.off"))
+print("ok: --json objects (success and invalid mesh)")
+JSON_CHECK
+
+# Progress on a run longer than a second, stderr not a terminal: "[   t s] stage ..." lines, at most one a second.
+# A tolerance no double-precision map reaches keeps the iterations going until the time budget.
+"$tool" "$bunny" -o "$scratch/progress.off" -t 1e-300 --max-seconds 4 > /dev/null 2> "$scratch/progress.txt"
+python3 - "$scratch/progress.txt" <<'PROGRESS_CHECK' || failures=$((failures + 1))
+import re, sys
+text = open(sys.argv[1]).read()
+lines = [l for l in text.splitlines() if l.startswith("[")]
+times = [float(re.match(r"\[\s*([0-9.]+) s\] ", l).group(1)) for l in lines]
+assert len(lines) >= 3, "too few progress lines: %r" % text
+assert any(re.search(r"stage 3/3, \w+ newton: iteration \d+, Res [0-9.e+-]+, \d+ non-positive faces", l) for l in lines), lines
+assert all(b - a >= 0.99 for a, b in zip(times, times[1:])), "more than one line a second: %r" % times
+assert "\r" not in text, "carriage returns outside a terminal"
+print("ok: progress, %d lines at least a second apart" % len(lines))
+PROGRESS_CHECK
+
+# Ctrl-C during the iterations: the best map so far is written, exit 1, status CANCELLED.
+"$tool" "$bunny" -o "$scratch/interrupted.off" -t 1e-300 --max-seconds 60 --json > "$scratch/interrupted.json" 2> "$scratch/err.txt" &
+pid=$!
+sleep 2
+kill -INT $pid
+wait $pid; check "Ctrl-C" 1 $?
+grep -qF "interrupted (Ctrl-C)" "$scratch/err.txt" || { echo "FAIL: no interruption message"; cat "$scratch/err.txt"; failures=$((failures + 1)); }
+python3 -c 'import json, sys; o = json.load(open(sys.argv[1])); assert o["status"] == "CANCELLED" and o["output"], o' \
+    "$scratch/interrupted.json" && [ -s "$scratch/interrupted.off" ] || { echo "FAIL: interrupted run"; failures=$((failures + 1)); }
+
 echo "$failures failed"
 [ "$failures" -eq 0 ]

@@ -158,6 +158,7 @@ public:
 
   /// The parameters, which can be changed between calls; a change of a setup parameter triggers a new setup.
   Parameters& parameters() { return m_parameters; }
+  /// The parameters.
   const Parameters& parameters() const { return m_parameters; }
 
   /// The statistics of the last setup and solve (shared by the copies of this object).

@@ -60,7 +60,7 @@ inline const char* get_error_message(Error_code code)
 }
 
 /// \ingroup PkgSphericalParameterizationRef
-/// The enumerator's name, e.g. `"GENUS_NOT_ZERO"` (used by the command line and the tests).
+/// The enumerator's name, such as `"GENUS_NOT_ZERO"` (used by the command line and the tests).
 inline const char* get_error_name(Error_code code)
 {
   switch(code) {

@@ -20,13 +20,15 @@ struct Stage_statistics {
 };
 
 /// \ingroup PkgSphericalParameterizationRef
-/// The outcome of `spherical_parameterize()`.
+/// The outcome of `spherical_parameterize()`. Figures that were not computed (after an input error) keep their
+/// default values: -1 for residuals, 0 for counts and times.
 struct Result {
-  Error_code status = Error_code::OK;
+  Error_code status = Error_code::OK;   ///< `Error_code::OK` only when converged and certified bijective.
   std::string message;                  ///< Human-readable explanation, with figures for input errors.
 
-  /// The paper's residual `Res = (1/n) sqrt(sum_i |alpha_i x_i - sum_j w_ij x_j|^2)` with the weights of each
-  /// vertex normalized to sum to one and `alpha_i = x_i . sum_j w_ij x_j` (its least-squares value).
+  /// The paper's residual \f$ Res = \frac{1}{n} \sqrt{\sum_i \| \alpha_i x_i - \sum_j w_{ij} x_j \|^2} \f$ with the
+  /// weights of each vertex normalized to sum to one and \f$ \alpha_i = x_i \cdot \sum_j w_{ij} x_j \f$ (its
+  /// least-squares value).
   double residual = -1.;
   double max_tangential_residual = -1.; ///< `max_i |alpha_i x_i - sum_j w_ij x_j|` (same normalization).
 
@@ -36,11 +38,11 @@ struct Result {
 
   Stage_statistics initial_guess;       ///< Stage 1: separator, two disks, Moebius, stereographic projection.
   Stage_statistics gauss_seidel;        ///< Stage 2: projected Gauss-Seidel while `Res` decreases.
-  Stage_statistics newton;              ///< Stage 3: local Newton until `Res < tolerance`.
-  double total_seconds = 0.;
+  Stage_statistics newton;              ///< Stage 3: the `nonlinear_solver` until `Res < tolerance`.
+  double total_seconds = 0.;            ///< Wall-clock time of the whole call, input checks included.
 
-  std::size_t number_of_vertices = 0;
-  std::size_t number_of_faces = 0;
+  std::size_t number_of_vertices = 0;   ///< Vertices of the input mesh.
+  std::size_t number_of_faces = 0;      ///< Faces of the input mesh.
   std::size_t separator_size = 0;       ///< Vertices in METIS' separator.
   std::size_t cut_loop_length = 0;      ///< Vertices on the loop shared by the two disks.
   std::size_t initial_flipped_faces = 0;///< Non-positive spherical triangles of the initial guess.

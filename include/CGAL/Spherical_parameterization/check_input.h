@@ -23,8 +23,9 @@ namespace Spherical_parameterization {
 /// \ingroup PkgSphericalParameterizationRef
 /// The verdict of `check_input()`: an error code and a message with the figures (how many loops, the genus...).
 struct Input_check {
-  Error_code status = Error_code::OK;
-  std::string message;
+  Error_code status = Error_code::OK;  ///< `Error_code::OK`, or the code of the first defect found.
+  std::string message;                 ///< `get_error_message(status)` with the figures of the defect.
+  /// `true` when `status == Error_code::OK`.
   explicit operator bool() const { return status == Error_code::OK; }
 };
 
@@ -191,6 +192,11 @@ inline Input_check check_mesh_arrays(const Mesh_arrays& mesh)
 /// coordinates are finite, every vertex belongs to a face, it is closed, edge- and vertex-manifold, consistently
 /// oriented, connected and of genus 0. Returns the first defect found with its figures.
 ///
+/// \tparam TriangleMesh a model of `FaceListGraph`.
+/// \tparam NamedParameters a sequence of named parameters.
+/// \param tm the mesh, not modified.
+/// \param np optional named parameters among the ones listed below.
+///
 /// \cgalNamedParamsBegin
 ///   \cgalParamNBegin{vertex_point_map}
 ///     \cgalParamDescription{a property map associating points to the vertices of `tm`}
@@ -212,8 +218,13 @@ Input_check check_input(const TriangleMesh& tm, const NamedParameters& np = CGAL
 }
 
 /// \ingroup PkgSphericalParameterizationRef
-/// The same checks on a polygon soup (points and faces as index lists), e.g. as read by
-/// `CGAL::IO::read_polygon_soup()`: soups can hold what a halfedge data structure cannot (non-manifold edges).
+/// The same checks on a polygon soup (points and faces as index lists), such as the
+/// output of `CGAL::IO::read_polygon_soup()`: soups can hold what a halfedge data structure cannot (non-manifold edges).
+///
+/// \tparam PointRange a range of points with `x()`, `y()` and `z()` convertible by `CGAL::to_double()`.
+/// \tparam PolygonRange a range of ranges of integral indices into `points`.
+/// \param points the vertices.
+/// \param polygons the faces, each as a list of indices into `points`.
 template <typename PointRange, typename PolygonRange>
 Input_check check_polygon_soup(const PointRange& points, const PolygonRange& polygons)
 {

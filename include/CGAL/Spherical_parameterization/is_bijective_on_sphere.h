@@ -21,7 +21,7 @@ namespace Spherical_parameterization {
 /// \ingroup PkgSphericalParameterizationRef
 /// What `certify_sphere_map()` found.
 struct Sphere_map_certificate {
-  std::size_t number_of_faces = 0;
+  std::size_t number_of_faces = 0;   ///< Faces of the mesh.
   std::size_t flipped_faces = 0;     ///< Faces whose spherical triangle is not positively oriented (exact predicate).
   double total_signed_area = 0.;     ///< Sum of the signed areas of the spherical triangles (4 pi for a bijection).
   bool valid_mesh = false;           ///< The mesh passes `check_input()` (closed, connected, manifold, oriented, genus 0).
@@ -59,8 +59,18 @@ Mesh_arrays read_connectivity(const TriangleMesh& tm, const NamedParameters& np)
 /// oriented genus-0 surface), every spherical triangle must be positively oriented, `CGAL::orientation(ORIGIN, p, q, r)
 /// == POSITIVE` decided exactly, and the signed spherical areas must add up to 4 pi (with every triangle positive
 /// the total is 4 pi times the degree of the map, so this excludes multiple coverings).
+///
+/// \tparam TriangleMesh a model of `FaceListGraph`.
+/// \tparam VertexSphereMap a model of `ReadablePropertyMap` from vertices to points with `x()`, `y()`, `z()`.
+/// \tparam NamedParameters a sequence of named parameters.
+/// \param tm the mesh.
+/// \param vsm the map to certify; the exact orientation test runs on its coordinates converted to `double`.
+/// \param np optional named parameters among the ones listed below.
+///
 /// \cgalNamedParamsBegin
-///   \cgalParamNBegin{vertex_index_map} \cgalParamDescription{indices of the vertices}
+///   \cgalParamNBegin{vertex_point_map} \cgalParamDescription{the points of the mesh, read by the input checks}
+///     \cgalParamDefault{`boost::get(CGAL::vertex_point, tm)`} \cgalParamNEnd
+///   \cgalParamNBegin{vertex_index_map} \cgalParamDescription{indices `0..num_vertices(tm)-1` of the vertices}
 ///     \cgalParamDefault{an automatically indexed internal map} \cgalParamNEnd
 /// \cgalNamedParamsEnd
 template <typename TriangleMesh, typename VertexSphereMap, typename NamedParameters = CGAL::parameters::Default_named_parameters>
@@ -96,7 +106,10 @@ Sphere_map_certificate certify_sphere_map(const TriangleMesh& tm, VertexSphereMa
 }
 
 /// \ingroup PkgSphericalParameterizationRef
-/// `true` iff `certify_sphere_map(tm, vsm, np).bijective`.
+/// `true` iff `certify_sphere_map(tm, vsm, np).bijective`; same parameters as `certify_sphere_map()`.
+/// \param tm the mesh.
+/// \param vsm the map to certify.
+/// \param np optional named parameters: `vertex_point_map`, `vertex_index_map`.
 template <typename TriangleMesh, typename VertexSphereMap, typename NamedParameters = CGAL::parameters::Default_named_parameters>
 bool is_bijective_on_sphere(const TriangleMesh& tm, VertexSphereMap vsm, const NamedParameters& np = CGAL::parameters::default_values())
 {
@@ -113,7 +126,21 @@ struct Spherical_distortion {
 };
 
 /// \ingroup PkgSphericalParameterizationRef
-/// Measures the angle and area distortion of the map `vsm` of `tm` (named parameters: `vertex_point_map`, `vertex_index_map`).
+/// Measures the angle and area distortion of the map `vsm` of `tm`.
+///
+/// \tparam TriangleMesh a model of `FaceListGraph`.
+/// \tparam VertexSphereMap a model of `ReadablePropertyMap` from vertices to points with `x()`, `y()`, `z()`.
+/// \tparam NamedParameters a sequence of named parameters.
+/// \param tm the mesh.
+/// \param vsm the map onto the sphere.
+/// \param np optional named parameters among the ones listed below.
+///
+/// \cgalNamedParamsBegin
+///   \cgalParamNBegin{vertex_point_map} \cgalParamDescription{the points of the mesh}
+///     \cgalParamDefault{`boost::get(CGAL::vertex_point, tm)`} \cgalParamNEnd
+///   \cgalParamNBegin{vertex_index_map} \cgalParamDescription{indices `0..num_vertices(tm)-1` of the vertices}
+///     \cgalParamDefault{an automatically indexed internal map} \cgalParamNEnd
+/// \cgalNamedParamsEnd
 template <typename TriangleMesh, typename VertexSphereMap, typename NamedParameters = CGAL::parameters::Default_named_parameters>
 Spherical_distortion measure_spherical_distortion(const TriangleMesh& tm, VertexSphereMap vsm,
                                                   const NamedParameters& np = CGAL::parameters::default_values())

@@ -134,13 +134,25 @@ auto append(const CGAL::Named_function_parameters<T, Tag, Inner>& np, const Base
 }
 } // namespace internal
 
-/// Joins named-parameter chains (the package's and CGAL's) into one.
+/// \cond SKIP_IN_MANUAL
 template <typename NP>
 const NP& combine(const NP& np)
 {
   return np;
 }
+/// \endcond
 
+/// \ingroup PkgSphericalParameterizationRef
+/// Joins named-parameter chains, the package's (`CGAL::Spherical_parameterization::parameters`) and CGAL's
+/// (`CGAL::parameters`), into one: CGAL 5.5 cannot chain parameters defined outside CGAL with `.name()`.
+/// When a parameter is in several chains, the first one counts.
+/// \code
+/// SP::parameters::combine(SP::parameters::weighting(SP::Weighting::COTANGENT), SP::parameters::tolerance(1e-7),
+///                         CGAL::parameters::vertex_point_map(vpm))
+/// \endcode
+/// \param np1 a chain of named parameters.
+/// \param np2 a chain of named parameters.
+/// \param rest more chains.
 template <typename NP1, typename NP2, typename... NPs>
 auto combine(const NP1& np1, const NP2& np2, const NPs&... rest)
 {

@@ -247,43 +247,68 @@ Result run_pipeline(const Mesh_arrays& mesh, Sphere_system& system, const Pipeli
 /// \tparam TriangleMesh a model of `FaceListGraph`.
 /// \tparam VertexSphereMap a model of `WritablePropertyMap` from vertices to a `Point_3` constructible from three doubles.
 /// \tparam NamedParameters a sequence of named parameters (the package's own, from
-///         `CGAL::Spherical_parameterization::parameters`, and CGAL's).
+///         `CGAL::Spherical_parameterization::parameters`, and CGAL's, joined by `parameters::combine()`).
+///
+/// \param tm the mesh, only read.
+/// \param vsm receives the position of every vertex on the unit sphere.
+/// \param np optional named parameters among the ones listed below.
 ///
 /// \cgalNamedParamsBegin
 ///   \cgalParamNBegin{vertex_point_map} \cgalParamDescription{the points of the vertices}
+///     \cgalParamType{a model of `ReadablePropertyMap` from vertices to points}
 ///     \cgalParamDefault{`boost::get(CGAL::vertex_point, tm)`} \cgalParamNEnd
-///   \cgalParamNBegin{geom_traits} \cgalParamDescription{a model of `Kernel`: its `Compute_x_3`, `Compute_y_3` and
-///     `Compute_z_3` read the points (converted to `double` with `CGAL::to_double()`), so exact kernels are accepted}
+///   \cgalParamNBegin{geom_traits} \cgalParamDescription{its `Compute_x_3`, `Compute_y_3` and `Compute_z_3` read the
+///     points (converted to `double` with `CGAL::to_double()`), so exact kernels are accepted}
+///     \cgalParamType{a model of `Kernel`}
 ///     \cgalParamDefault{the kernel of the point type of `vertex_point_map`} \cgalParamNEnd
-///   \cgalParamNBegin{vertex_index_map} \cgalParamDescription{indices `0..num_vertices(tm)-1`}
+///   \cgalParamNBegin{vertex_index_map} \cgalParamDescription{indices `0..num_vertices(tm)-1` of the vertices}
+///     \cgalParamType{a model of `ReadablePropertyMap` from vertices to an integer type}
 ///     \cgalParamDefault{an automatically indexed internal map} \cgalParamNEnd
-///   \cgalParamNBegin{weighting} \cgalParamDescription{the weights `w_ij` (`Weighting`)}
+///   \cgalParamNBegin{weighting} \cgalParamDescription{the weights `w_ij` of the balance equations}
+///     \cgalParamType{`Weighting`}
 ///     \cgalParamDefault{`Weighting::UNIFORM`, or `Weighting::USER_MAP` when `halfedge_weight_map` is given} \cgalParamNEnd
-///   \cgalParamNBegin{halfedge_weight_map} \cgalParamDescription{readable map halfedge -> double: the weight of `source(h)` in the equation of `target(h)`}
+///   \cgalParamNBegin{halfedge_weight_map} \cgalParamDescription{the weight of `source(h)` in the equation of
+///     `target(h)`; the weights of a vertex must be finite with a positive sum}
+///     \cgalParamType{a model of `ReadablePropertyMap` from halfedges to a type convertible to `double`}
 ///     \cgalParamDefault{none} \cgalParamNEnd
 ///   \cgalParamNBegin{admissible_weights} \cgalParamDescription{solve with the closest symmetric positive weights
-///     (`w_ij`, `w_ji` replaced by their mean, weights below 1% of the local mean raised to it), for which a bijective
-///     solution exists on every inscribable mesh} \cgalParamDefault{`false`} \cgalParamNEnd
-///   \cgalParamNBegin{tolerance} \cgalParamDescription{stop when `Res` is below it} \cgalParamDefault{`1e-6`} \cgalParamNEnd
-///   \cgalParamNBegin{max_gauss_seidel_sweeps} \cgalParamDescription{cap of stage 2} \cgalParamDefault{1000} \cgalParamNEnd
-///   \cgalParamNBegin{max_newton_sweeps} \cgalParamDescription{cap of stage 3} \cgalParamDefault{200000} \cgalParamNEnd
-///   \cgalParamNBegin{max_seconds} \cgalParamDescription{time budget of stages 2 and 3} \cgalParamDefault{unlimited} \cgalParamNEnd
+///     (`w_ij`, `w_ji` replaced by their mean, weights below 1% of the local mean raised to it), for which the theory
+///     guarantees a bijective solution on inscribable meshes; `Result::clamped_weights` counts the edges raised}
+///     \cgalParamType{`bool`} \cgalParamDefault{`false`} \cgalParamNEnd
+///   \cgalParamNBegin{tolerance} \cgalParamDescription{stop when `Res` is below it}
+///     \cgalParamType{`double`} \cgalParamDefault{`1e-6`} \cgalParamNEnd
+///   \cgalParamNBegin{max_gauss_seidel_sweeps} \cgalParamDescription{iteration cap of stage 2}
+///     \cgalParamType{`std::size_t`} \cgalParamDefault{1000} \cgalParamNEnd
+///   \cgalParamNBegin{max_newton_sweeps} \cgalParamDescription{iteration cap of stage 3}
+///     \cgalParamType{`std::size_t`} \cgalParamDefault{200000} \cgalParamNEnd
+///   \cgalParamNBegin{max_seconds} \cgalParamDescription{time budget of stages 2 and 3, in seconds; a negative value means none}
+///     \cgalParamType{`double`} \cgalParamDefault{unlimited} \cgalParamNEnd
 ///   \cgalParamNBegin{preserve_bijectivity} \cgalParamDescription{backtrack moves that would fold a triangle}
-///     \cgalParamDefault{`true`} \cgalParamNEnd
-///   \cgalParamNBegin{nonlinear_solver} \cgalParamDescription{the solver of stage 3 (`Nonlinear_solver`)}
-///     \cgalParamDefault{`Nonlinear_solver::GLOBAL_NEWTON`} \cgalParamNEnd
-///   \cgalParamNBegin{metis_seed} \cgalParamDescription{seed of METIS} \cgalParamDefault{0} \cgalParamNEnd
-///   \cgalParamNBegin{METIS_options} \cgalParamDescription{an `idx_t*` (or a pointer to an array) to `METIS_NOPTIONS` options of `METIS_ComputeVertexSeparator`
-///     (CGAL's tag); overrides `metis_seed`} \cgalParamDefault{METIS' defaults with `metis_seed`} \cgalParamNEnd
-///   \cgalParamNBegin{sparse_linear_solver} \cgalParamDescription{a model of `SparseLinearAlgebraTraits_d` for the disk stage,
-///     e.g. `AMG_solver_traits`} \cgalParamDefault{`AMG_solver_traits`} \cgalParamNEnd
-///   \cgalParamNBegin{progress_callback} \cgalParamDescription{a callable `bool(const Progress&)` called after stage 1 and
-///     after every iteration; returning `false` cancels (status `Error_code::CANCELLED`, the current iterate is written)}
+///     \cgalParamType{`bool`} \cgalParamDefault{`true`} \cgalParamNEnd
+///   \cgalParamNBegin{nonlinear_solver} \cgalParamDescription{the solver of stage 3}
+///     \cgalParamType{`Nonlinear_solver`} \cgalParamDefault{`Nonlinear_solver::GLOBAL_NEWTON`} \cgalParamNEnd
+///   \cgalParamNBegin{metis_seed} \cgalParamDescription{seed of METIS: the same seed gives bitwise identical output}
+///     \cgalParamType{`int`} \cgalParamDefault{0} \cgalParamNEnd
+///   \cgalParamNBegin{METIS_options} \cgalParamDescription{the `METIS_NOPTIONS` options of `METIS_ComputeVertexSeparator`
+///     (CGAL's tag); overrides `metis_seed`}
+///     \cgalParamType{`idx_t*`, or a pointer to an array of `METIS_NOPTIONS` `idx_t`}
+///     \cgalParamDefault{METIS' defaults with `metis_seed`} \cgalParamNEnd
+///   \cgalParamNBegin{sparse_linear_solver} \cgalParamDescription{the linear solver of the disk stage; if it fails,
+///     Eigen's sparse LU is tried before `Error_code::DISK_EMBEDDING_FAILED`}
+///     \cgalParamType{a model of `SphericalParameterizationDiskSolverTraits`}
+///     \cgalParamDefault{`AMG_solver_traits` (`Default_disk_solver_traits`)} \cgalParamNEnd
+///   \cgalParamNBegin{progress_callback} \cgalParamDescription{called after stage 1 and after every iteration;
+///     returning `false` cancels (status `Error_code::CANCELLED`, the current iterate is written)}
+///     \cgalParamType{a model of `SphericalParameterizationProgressCallback`}
 ///     \cgalParamDefault{none} \cgalParamNEnd
-///   \cgalParamNBegin{verbose} \cgalParamDescription{print the figures of each stage to `std::cerr`} \cgalParamDefault{`false`} \cgalParamNEnd
+///   \cgalParamNBegin{verbose} \cgalParamDescription{print the figures of each stage to `std::cerr`, and the progress
+///     at most once a second}
+///     \cgalParamType{`bool`} \cgalParamDefault{`false`} \cgalParamNEnd
 /// \cgalNamedParamsEnd
 ///
 /// \return a `Result` with the status, the residuals, the exact flip count and the figures of each stage.
+///
+/// \sa `check_input()`, `certify_sphere_map()`, `measure_spherical_distortion()`
 template <typename ConcurrencyTag = CGAL::Sequential_tag, typename TriangleMesh, typename VertexSphereMap,
           typename NamedParameters = CGAL::parameters::Default_named_parameters>
 Result spherical_parameterize(const TriangleMesh& tm, VertexSphereMap vsm,

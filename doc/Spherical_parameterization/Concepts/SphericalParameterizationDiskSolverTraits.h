@@ -1,0 +1,55 @@
+/*!
+\ingroup PkgSphericalParameterizationConcepts
+\cgalConcept
+
+The concept `SphericalParameterizationDiskSolverTraits` describes the sparse linear solver of the disk stage of
+`CGAL::Spherical_parameterization::spherical_parameterize()` (its `sparse_linear_solver` named parameter). Each
+half of the mesh is embedded in the unit disk by CGAL's
+`Surface_mesh_parameterization::Fixed_border_parameterizer_3` with this type as its `SolverTraits`, so the
+requirements are those of CGAL's `SparseLinearAlgebraTraits_d`, as that class uses them, plus the semantics below.
+
+- The matrix of a half has one identity row per vertex of the loop (its position is known) and one row per
+  interior vertex; it is non-symmetric as given, even for uniform weights, and symmetric for uniform and
+  cotangent weights once the identity rows are eliminated.
+- `linear_solver(A, B, X, D)` is called twice per half with the same `A`, for the u and then the v coordinates:
+  a solver that caches its factorization (as `CGAL::Spherical_parameterization::AMG_solver_traits` does) pays
+  one setup per half.
+- The object is copied into each parameterizer: copies must be usable independently, or share their state
+  safely, as copies of `CGAL::Eigen_solver_traits` and of `AMG_solver_traits` do.
+- Returning `false` is a recoverable failure: the package then tries Eigen's sparse LU
+  (`CGAL::Spherical_parameterization::Sparse_LU_disk_solver_traits`) before it gives up with
+  `Error_code::DISK_EMBEDDING_FAILED`.
+
+\cgalRefines{`SparseLinearAlgebraTraits_d`, `DefaultConstructible`, `CopyConstructible`}
+
+\cgalHasModel{`CGAL::Spherical_parameterization::AMG_solver_traits` (the default),
+`CGAL::Spherical_parameterization::Sparse_LU_disk_solver_traits`, `CGAL::Eigen_solver_traits` with an Eigen
+solver for non-symmetric matrices}
+*/
+class SphericalParameterizationDiskSolverTraits
+{
+public:
+  /// \name Types
+  /// @{
+
+  /// The number type: `double`.
+  typedef unspecified_type NT;
+
+  /// A sparse square matrix: constructible from its number of rows and columns, filled with
+  /// `set_coef(int i, int j, NT value, bool new_coef)`.
+  typedef unspecified_type Matrix;
+
+  /// A dense vector: constructible from its size, read and written with `operator[]`.
+  typedef unspecified_type Vector;
+
+  /// @}
+
+  /// \name Operations
+  /// @{
+
+  /// Solves \f$ A X = B \f$; the solution is \f$ X / D \f$.
+  /// \return `true` if the system was solved to the solver's accuracy.
+  bool linear_solver(const Matrix& A, const Vector& B, Vector& X, NT& D);
+
+  /// @}
+};

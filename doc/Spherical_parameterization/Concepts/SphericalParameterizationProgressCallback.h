@@ -1,0 +1,36 @@
+/*!
+\ingroup PkgSphericalParameterizationConcepts
+\cgalConcept
+
+The concept `SphericalParameterizationProgressCallback` describes the `progress_callback` named parameter of
+`CGAL::Spherical_parameterization::spherical_parameterize()`: a callable object that is told how the computation
+goes, and that can stop it.
+
+It is called once at the end of stage 1 (stage `"initial guess"`, iteration 0), then after every sweep of the
+projected Gauss-Seidel iterations (`"gauss-seidel"`) and after every iteration of the nonlinear solver
+(`"global newton"` or `"local newton"`), from the thread that called `spherical_parameterize()`. It should
+return quickly: on small meshes it is called thousands of times a second.
+
+Returning `false` stops the computation at that point: the status is `Error_code::CANCELLED` (unless the
+connectivity is provably not inscribable: `Error_code::NO_BALANCED_SOLUTION` takes precedence), and the map
+receives the current iterate, which is certified like any other (`Result::bijective`, `Result::flipped_faces`).
+A lambda, a function pointer or a `std::function<bool(const CGAL::Spherical_parameterization::Progress&)>` are
+models.
+
+\cgalRefines{`CopyConstructible`}
+
+\cgalHasModel{`std::function<bool(const CGAL::Spherical_parameterization::Progress&)>`}
+*/
+class SphericalParameterizationProgressCallback
+{
+public:
+  /// \name Operations
+  /// @{
+
+  /// Receives the stage, the iteration, the residual `Res`, the number of non-positive spherical triangles and
+  /// the seconds since the call started.
+  /// \return `true` to continue, `false` to stop.
+  bool operator()(const CGAL::Spherical_parameterization::Progress& progress);
+
+  /// @}
+};
