@@ -22,13 +22,17 @@ using Mesh = CGAL::Surface_mesh<Point>;
 
 int main(int argc, char** argv)
 {
-  if(argc < 3) { std::cerr << "usage: test_mesh_corpus MESH uniform|cotangent|mean_value [--known-failure REASON]\n"; return 2; }
+  if(argc < 3) { std::cerr << "usage: test_mesh_corpus MESH uniform|cotangent|mean_value[_admissible] [--known-failure REASON]\n"; return 2; }
   const std::string path = argv[1], weights = argv[2];
   const std::string known_failure = (argc >= 5 && std::string(argv[3]) == "--known-failure") ? argv[4] : "";
+  // WEIGHTS: uniform, cotangent, mean_value, or one of the last two + "_admissible" (admissible_weights(true)).
+  const std::string suffix = "_admissible";
+  const bool admissible = weights.size() > suffix.size() && weights.compare(weights.size() - suffix.size(), suffix.size(), suffix) == 0;
+  const std::string base = admissible ? weights.substr(0, weights.size() - suffix.size()) : weights;
   SP::Weighting weighting = SP::Weighting::UNIFORM;
-  if(weights == "cotangent") weighting = SP::Weighting::COTANGENT;
-  else if(weights == "mean_value") weighting = SP::Weighting::MEAN_VALUE;
-  else if(weights != "uniform") { std::cerr << "unknown weights " << weights << "\n"; return 2; }
+  if(base == "cotangent") weighting = SP::Weighting::COTANGENT;
+  else if(base == "mean_value") weighting = SP::Weighting::MEAN_VALUE;
+  else if(base != "uniform") { std::cerr << "unknown weights " << weights << "\n"; return 2; }
 
   Mesh mesh;
   if(!CGAL::IO::read_polygon_mesh(path, mesh) || mesh.is_empty()) {
@@ -39,7 +43,8 @@ int main(int argc, char** argv)
   // A time budget keeps a regression from hanging the test run; known failures get a shorter one.
   const double budget = known_failure.empty() ? 300. : 10.;
   const SP::Result result = SP::spherical_parameterize(
-      mesh, sphere, SP::parameters::combine(SP::parameters::weighting(weighting), SP::parameters::max_seconds(budget)));
+      mesh, sphere, SP::parameters::combine(SP::parameters::weighting(weighting), SP::parameters::max_seconds(budget),
+                                            SP::parameters::admissible_weights(admissible)));
   const SP::Sphere_map_certificate certificate = SP::certify_sphere_map(mesh, sphere);
 
   std::cout << path << " [" << weights << "] faces " << mesh.number_of_faces() << " status " << SP::get_error_name(result.status)

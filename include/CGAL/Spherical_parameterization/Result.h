@@ -50,6 +50,10 @@ struct Result {
   bool admissible_weights = false;      ///< The weights were made symmetric and positive (named parameter `admissible_weights`).
   std::size_t clamped_weights = 0;      ///< Edges whose weight `admissible_weights` raised to 1% of the local mean.
   std::size_t rejected_moves = 0;       ///< Vertex moves backtracked to preserve bijectivity.
+  /// How far the continuation from Tutte's weights to the given ones got, in [0, 1] (1: all the way); -1 when it
+  /// was not needed. Below 1, the balanced maps of the blended weights could not be followed further: with
+  /// cotangent weights, typically because a triangle degenerates on the way.
+  double continuation_parameter = -1.;
 
   /// `true` when `status == Error_code::OK`.
   explicit operator bool() const { return status == Error_code::OK; }

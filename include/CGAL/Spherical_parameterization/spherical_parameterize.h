@@ -58,6 +58,7 @@ inline const idx_t* metis_options_pointer(const idx_t (*options)[METIS_NOPTIONS]
 
 struct Pipeline_options {
   Weighting weighting = Weighting::UNIFORM;
+  bool admissible_weights = false;  // the weights were made symmetric and positive
   Nonlinear_solver nonlinear_solver = Nonlinear_solver::GLOBAL_NEWTON;
   int metis_seed = 0;
   const idx_t* metis_options = nullptr;  // METIS_NOPTIONS values, or nullptr for METIS' defaults and metis_seed
@@ -190,6 +191,7 @@ Result run_pipeline(const Mesh_arrays& mesh, Sphere_system& system, const Pipeli
   result.newton.residual = newton.residual;
   result.newton.seconds = stage.seconds();
   result.rejected_moves = gauss_seidel.rejected_moves + newton.rejected_moves;
+  result.continuation_parameter = newton.continuation_parameter;
   if(options.verbose)
     std::cerr << "stage 3: " << newton.sweeps << " sweeps, Res " << newton.residual << ", non-positive faces "
               << state.invalid_faces() << ", " << result.newton.seconds << " s\n";
@@ -219,9 +221,15 @@ Result run_pipeline(const Mesh_arrays& mesh, Sphere_system& system, const Pipeli
   } else if(result.status != Error_code::OK) {
     std::ostringstream details;
     details << " (Res " << result.residual << ", " << result.flipped_faces << " flipped faces";
-    if(newton.stagnated)
-      details << "; the residual stagnated" << (system.symmetric ? "" : ": with non-symmetric weights the balance equations "
-                                                                        "generally have no exact solution, only a least-squares one");
+    if(result.continuation_parameter >= 0. && result.continuation_parameter < 1.)
+      details << "; the balanced maps from Tutte's weights towards these could be followed only "
+              << static_cast<int>(100. * result.continuation_parameter) << "% of the way";
+    if(!system.symmetric)
+      details << "; with non-symmetric weights the balance equations generally have no exact solution";
+    else if(newton.stagnated)
+      details << "; the residual stagnated";
+    if(!options.admissible_weights && (!system.symmetric || result.continuation_parameter >= 0.))
+      details << "; the admissible_weights named parameter may help";
     details << ")";
     result.message += details.str();
   }
@@ -422,6 +430,7 @@ Result spherical_parameterize(const TriangleMesh& tm, VertexSphereMap vsm,
   const bool admissible = choose_parameter(get_parameter(np, internal_np::admissible_weights), false);
   const std::size_t clamped_weights = admissible ? internal::make_weights_admissible(system) : 0;
   if(admissible) options.weighting = Weighting::USER_MAP;  // the disks use the same (admissible) weights
+  options.admissible_weights = admissible;
 
   using Solver = typename CGAL::internal_np::Lookup_named_param_def<CGAL::internal_np::sparse_linear_solver_t, NamedParameters,
                                                                     Default_disk_solver_traits>::type;

@@ -275,6 +275,7 @@ inline Iteration_report global_newton(Sphere_state& state, const Iteration_optio
     const Continuation_report continuation = weight_continuation(system, state.positions(), options, clock, initial_guess);
     state.assign(state.positions());
     report.sweeps += continuation.newton_steps;
+    report.continuation_parameter = continuation.last_parameter;
     if(continuation.reached) {
       report.residual = compute_residuals(system, state.positions()).paper;
       report.converged = report.residual < options.tolerance && state.invalid_faces() == 0;
@@ -289,6 +290,7 @@ inline Iteration_report global_newton(Sphere_state& state, const Iteration_optio
   Iteration_report cautious = cautious_newton(state, remaining, clock);
   cautious.sweeps += report.sweeps;
   cautious.rejected_moves += report.rejected_moves;
+  cautious.continuation_parameter = report.continuation_parameter;
   return cautious;
 }
 

@@ -41,6 +41,7 @@ struct Iteration_report {
   bool stagnated = false;       // the residual stopped decreasing before the tolerance
   bool cancelled = false;       // the progress callback asked to stop
   std::size_t rejected_moves = 0;
+  double continuation_parameter = -1.;  // how far the continuation from Tutte's weights got (-1: not tried)
 };
 
 // Positions, cached neighbour sums s_i = sum_j w_ij x_j, and which faces are positively oriented.
