@@ -5,6 +5,8 @@ set -euo pipefail
 cd "$(dirname "$0")/.."
 
 packages=(cmake g++ libcgal-dev libcgal-demo libeigen3-dev libmetis-dev libboost-dev libgtest-dev ccache)
+# TBB is optional for users; the tests check that CGAL::Parallel_tag gives the same map as Sequential_tag.
+packages+=(libtbb-dev)
 missing=()
 # Doxygen builds the manual's reference pages; ctest checks them for warnings (doc.manual, about a second).
 packages+=(doxygen)

@@ -1,7 +1,9 @@
 // The whole pipeline on a list of meshes, printed as a table in the style of the paper's Table 1 (and as CSV).
 //
 //   benchmark_spherical_parameterization [--runs N] [--weights uniform,mean_value,cotangent]
-//                                        [--solvers global,local] [--max-seconds S] [--csv FILE] MESH...
+//                                        [--solvers global,local] [--max-seconds S] [--sequential] [--csv FILE] MESH...
+// CGAL::Parallel_if_available_tag by default (the two disks of stage 1 at the same time when TBB is there);
+// --sequential uses CGAL::Sequential_tag.
 //
 // Each configuration runs N times; the table gives the median seconds and the figures of the median run.
 // Peak memory is the process' VmHWM after the run (monotone over the program: run one mesh per process for
@@ -58,6 +60,7 @@ int main(int argc, char** argv)
   double max_seconds = 600.;
   std::vector<std::string> weights = {"uniform"}, solvers = {"global"}, meshes;
   std::string csv_path;
+  bool sequential = false;
   for(int a = 1; a < argc; ++a) {
     const std::string arg = argv[a];
     if(arg == "--runs" && a + 1 < argc) runs = std::max(1, std::atoi(argv[++a]));
@@ -65,6 +68,7 @@ int main(int argc, char** argv)
     else if(arg == "--solvers" && a + 1 < argc) solvers = split(argv[++a]);
     else if(arg == "--max-seconds" && a + 1 < argc) max_seconds = std::atof(argv[++a]);
     else if(arg == "--csv" && a + 1 < argc) csv_path = argv[++a];
+    else if(arg == "--sequential") sequential = true;
     else meshes.push_back(arg);
   }
   if(meshes.empty()) { std::cerr << "usage: benchmark_spherical_parameterization [options] MESH...\n"; return 2; }
@@ -85,12 +89,13 @@ int main(int argc, char** argv)
     for(const std::string& w : weights)
       for(const std::string& s : solvers) {
         std::vector<SP::Result> results;
-        for(int r = 0; r < runs; ++r)
-          results.push_back(SP::spherical_parameterize(
-              mesh, sphere,
-              SP::parameters::combine(SP::parameters::weighting(weighting_of(w)), SP::parameters::max_seconds(max_seconds),
-                                      SP::parameters::nonlinear_solver(s == "local" ? SP::Nonlinear_solver::LOCAL_NEWTON
-                                                                                    : SP::Nonlinear_solver::GLOBAL_NEWTON))));
+        for(int r = 0; r < runs; ++r) {
+          const auto parameters = SP::parameters::combine(
+              SP::parameters::weighting(weighting_of(w)), SP::parameters::max_seconds(max_seconds),
+              SP::parameters::nonlinear_solver(s == "local" ? SP::Nonlinear_solver::LOCAL_NEWTON : SP::Nonlinear_solver::GLOBAL_NEWTON));
+          results.push_back(sequential ? SP::spherical_parameterize<CGAL::Sequential_tag>(mesh, sphere, parameters)
+                                       : SP::spherical_parameterize<CGAL::Parallel_if_available_tag>(mesh, sphere, parameters));
+        }
         std::sort(results.begin(), results.end(),
                   [](const SP::Result& a, const SP::Result& b) { return a.total_seconds < b.total_seconds; });
         const SP::Result& m = results[results.size() / 2];

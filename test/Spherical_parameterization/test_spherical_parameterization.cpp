@@ -688,6 +688,28 @@ TEST(SphericalParameterize, DeterministicAndInputUntouched)
   EXPECT_EQ(r1.residual, r2.residual);
 }
 
+// CGAL::Parallel_tag embeds the two disks at the same time; the map is bitwise the same as with Sequential_tag.
+TEST(SphericalParameterize, ParallelTagGivesTheSameMap)
+{
+#ifdef CGAL_LINKED_WITH_TBB
+  // Meshes and weights that converge: a time budget would make the comparison depend on the machine's load.
+  for(const std::string file : {cgal_data + "/triceratops.off", shared_meshes + "/trimesh_busted.off"})
+    for(SP::Weighting weighting : {SP::Weighting::UNIFORM, SP::Weighting::MEAN_VALUE}) {
+      if(file == cgal_data + "/triceratops.off" && weighting == SP::Weighting::MEAN_VALUE) continue;
+      Mesh m = read_mesh(file);
+      auto sequential = m.add_property_map<Mesh::Vertex_index, Point>("v:sequential").first;
+      auto parallel = m.add_property_map<Mesh::Vertex_index, Point>("v:parallel").first;
+      const SP::Result r1 = SP::spherical_parameterize<CGAL::Sequential_tag>(m, sequential, SP::parameters::weighting(weighting));
+      const SP::Result r2 = SP::spherical_parameterize<CGAL::Parallel_tag>(m, parallel, SP::parameters::weighting(weighting));
+      EXPECT_EQ(r1.status, r2.status) << file;
+      EXPECT_EQ(r1.residual, r2.residual) << file;
+      for(auto v : m.vertices()) ASSERT_TRUE(sequential[v] == parallel[v]) << file;
+    }
+#else
+  GTEST_SKIP() << "built without TBB: CGAL::Parallel_tag is not available";
+#endif
+}
+
 TEST(SphericalParameterize, TinyMeshes)
 {
   for(const Arrays& a : {octahedron(), cube(), icosahedron()}) {

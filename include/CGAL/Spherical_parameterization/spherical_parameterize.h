@@ -23,6 +23,11 @@
 #include <CGAL/boost/graph/named_params_helper.h>
 #include <CGAL/property_map.h>
 #include <CGAL/tags.h>
+#include <CGAL/use.h>
+
+#ifdef CGAL_LINKED_WITH_TBB
+#include <tbb/parallel_invoke.h>
+#endif
 
 #include <Eigen/SparseLU>
 
@@ -63,27 +68,48 @@ struct Pipeline_options {
   int metis_seed = 0;
   const idx_t* metis_options = nullptr;  // METIS_NOPTIONS values, or nullptr for METIS' defaults and metis_seed
   bool verbose = false;
+  bool parallel = false;  // CGAL::Parallel_tag with TBB
   Iteration_options iterations;
   // Stage-level progress (the user's callback and the verbose printing); false cancels.
   std::function<bool(const Progress&)> report;
 };
 
-// Stage 1 for one weighting: two disks, Moebius inversion and inverse stereographic projection.
+// A solver that shares no state with `solver`, for a disk embedded on another thread (copies of the solver
+// traits share their factorization, as CGAL's Eigen_solver_traits do).
+template <typename SolverTraits>
+SolverTraits independent_solver(const SolverTraits&) { return SolverTraits(); }
+inline AMG_solver_traits independent_solver(const AMG_solver_traits& solver) { return AMG_solver_traits(solver.parameters()); }
+
+// Stage 1 for one weighting: two disks, Moebius inversion and inverse stereographic projection. With `parallel`
+// (CGAL::Parallel_tag and TBB) the two disks are embedded at the same time; the result is the same.
 template <typename SolverTraits>
 bool initial_sphere(const Mesh_arrays& mesh, const Sphere_system& system, const Two_disk_partition& partition,
-                    Weighting weighting, const SolverTraits& solver, std::vector<Vector3>& x)
+                    Weighting weighting, const SolverTraits& solver, std::vector<Vector3>& x, bool parallel = false)
 {
   const std::size_t n = system.number_of_vertices;
-  std::vector<double> u(n, 0.), v(n, 0.);
+  std::vector<double> u_a(n, 0.), v_a(n, 0.), u_b(n, 0.), v_b(n, 0.);
   std::vector<char> side(n, 0);  // 1: disk A, 2: disk B (the loop counts as A)
   for(std::size_t f = 0; f < system.triangles.size(); ++f)
     for(int g : system.triangles[f])
       if(partition.face_in_disk_a[f]) side[static_cast<std::size_t>(g)] = 1;
       else if(side[static_cast<std::size_t>(g)] == 0) side[static_cast<std::size_t>(g)] = 2;
-  if(!embed_one_disk(mesh, system, partition, 0, weighting, solver, u, v)) return false;
-  if(!embed_one_disk(mesh, system, partition, 1, weighting, solver, u, v)) return false;
+  bool embedded_a = false, embedded_b = false;
+#ifdef CGAL_LINKED_WITH_TBB
+  if(parallel) {
+    const SolverTraits solver_a = independent_solver(solver), solver_b = independent_solver(solver);
+    tbb::parallel_invoke([&] { embedded_a = embed_one_disk(mesh, system, partition, 1, weighting, solver_a, u_a, v_a); },
+                         [&] { embedded_b = embed_one_disk(mesh, system, partition, 0, weighting, solver_b, u_b, v_b); });
+  } else
+#endif
+  {
+    CGAL_USE(parallel);
+    embedded_a = embed_one_disk(mesh, system, partition, 1, weighting, solver, u_a, v_a);
+    embedded_b = embedded_a && embed_one_disk(mesh, system, partition, 0, weighting, solver, u_b, v_b);
+  }
+  if(!embedded_a || !embedded_b) return false;
   x.resize(n);
-  for(std::size_t i = 0; i < n; ++i) x[i] = inverse_stereographic(u[i], v[i], side[i] == 2);
+  for(std::size_t i = 0; i < n; ++i)
+    x[i] = side[i] == 2 ? inverse_stereographic(u_b[i], v_b[i], true) : inverse_stereographic(u_a[i], v_a[i], false);
   return true;
 }
 
@@ -106,17 +132,17 @@ Result run_pipeline(const Mesh_arrays& mesh, Sphere_system& system, const Pipeli
   }
   result.separator_size = partition.separator_size;
   result.cut_loop_length = partition.loop.size();
-  bool embedded = initial_sphere(mesh, system, partition, options.weighting, solver, x);
+  bool embedded = initial_sphere(mesh, system, partition, options.weighting, solver, x, options.parallel);
   if(!embedded) {
     // An iterative solver can give up where a direct one does not: try Eigen's sparse LU before failing.
-    embedded = initial_sphere(mesh, system, partition, options.weighting, Sparse_LU_disk_solver_traits(), x);
+    embedded = initial_sphere(mesh, system, partition, options.weighting, Sparse_LU_disk_solver_traits(), x, options.parallel);
     if(options.verbose && embedded) std::cerr << "stage 1: the disk solver failed; Eigen's sparse LU was used\n";
   }
   Sphere_certificate start = embedded ? certify(system.triangles, x) : Sphere_certificate();
   if(options.weighting != Weighting::UNIFORM && (!embedded || start.flipped_faces > 0)) {
     // Weights that may be negative or non-symmetric can fold the disks: Tutte's disks cannot.
     std::vector<Vector3> uniform_start;
-    if(initial_sphere(mesh, system, partition, Weighting::UNIFORM, solver, uniform_start)) {
+    if(initial_sphere(mesh, system, partition, Weighting::UNIFORM, solver, uniform_start, options.parallel)) {
       const Sphere_certificate uniform_certificate = certify(system.triangles, uniform_start);
       if(!embedded || uniform_certificate.flipped_faces < start.flipped_faces) {
         x.swap(uniform_start);
@@ -251,7 +277,8 @@ Result run_pipeline(const Mesh_arrays& mesh, Sphere_system& system, const Pipeli
 /// The mesh is never modified. On an input error nothing is written to `vsm`; otherwise `vsm` receives the
 /// final (best) iterate, also when the status is `NOT_CONVERGED` or `NOT_BIJECTIVE`.
 ///
-/// \tparam ConcurrencyTag `CGAL::Sequential_tag` (the only one implemented so far).
+/// \tparam ConcurrencyTag `CGAL::Sequential_tag`, `CGAL::Parallel_tag` (needs TBB: the two disks of stage 1 are
+///         embedded at the same time) or `CGAL::Parallel_if_available_tag`. The result does not depend on it.
 /// \tparam TriangleMesh a model of `FaceListGraph`.
 /// \tparam VertexSphereMap a model of `WritablePropertyMap` from vertices to a `Point_3` constructible from three doubles.
 /// \tparam NamedParameters a sequence of named parameters (the package's own, from
@@ -322,8 +349,10 @@ template <typename ConcurrencyTag = CGAL::Sequential_tag, typename TriangleMesh,
 Result spherical_parameterize(const TriangleMesh& tm, VertexSphereMap vsm,
                               const NamedParameters& np = CGAL::parameters::default_values())
 {
-  static_assert(std::is_same<ConcurrencyTag, CGAL::Sequential_tag>::value,
-                "spherical_parameterize: only CGAL::Sequential_tag is implemented");
+#ifndef CGAL_LINKED_WITH_TBB
+  static_assert(!std::is_convertible<ConcurrencyTag, CGAL::Parallel_tag>::value,
+                "spherical_parameterize: Parallel_tag is enabled but TBB is unavailable");
+#endif
   using CGAL::parameters::choose_parameter;
   using CGAL::parameters::get_parameter;
   using CGAL::parameters::is_default_parameter;
@@ -355,6 +384,7 @@ Result spherical_parameterize(const TriangleMesh& tm, VertexSphereMap vsm,
 
   constexpr bool has_user_weights = !is_default_parameter<NamedParameters, internal_np::halfedge_weight_map_t>::value;
   internal::Pipeline_options options;
+  options.parallel = std::is_convertible<ConcurrencyTag, CGAL::Parallel_tag>::value;
   options.weighting = choose_parameter(get_parameter(np, internal_np::weighting),
                                        has_user_weights ? Weighting::USER_MAP : Weighting::UNIFORM);
   options.nonlinear_solver = choose_parameter(get_parameter(np, internal_np::nonlinear_solver), Nonlinear_solver::GLOBAL_NEWTON);
