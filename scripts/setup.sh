@@ -4,7 +4,7 @@
 set -euo pipefail
 cd "$(dirname "$0")/.."
 
-packages=(cmake g++ libcgal-dev libcgal-demo libeigen3-dev libmetis-dev libboost-dev libgtest-dev ccache)
+packages=(cmake g++ libcgal-dev libcgal-demo libeigen3-dev libmetis-dev libboost-dev libgtest-dev ccache zlib1g-dev)
 missing=()
 for p in "${packages[@]}"; do
   dpkg -s "$p" >/dev/null 2>&1 || missing+=("$p")

@@ -1,9 +1,10 @@
 // Command line: map a closed genus-0 triangle mesh onto the unit sphere, bijectively.
 //
-//   spherical_parameterize input.(off|obj|ply|stl) [-o sphere.off] [options]
+//   spherical_parameterize input.(off|off.gz|obj|ply|stl) [-o sphere.off] [options]
 //
 // The output keeps the input's vertex order and face list; coordinates are written with 17 significant digits.
 
+#include <CGAL/Spherical_parameterization/IO/read_polygon_soup.h>
 #include <CGAL/Spherical_parameterization/check_input.h>
 #include <CGAL/Spherical_parameterization/spherical_parameterize.h>
 
@@ -21,6 +22,9 @@
 #include <string>
 #include <vector>
 
+#include <sys/stat.h>
+#include <unistd.h>
+
 namespace SP = CGAL::Spherical_parameterization;
 using Kernel = CGAL::Epick;
 using Point = Kernel::Point_3;
@@ -35,7 +39,7 @@ void print_usage(std::ostream& out)
   out << "Usage: spherical_parameterize INPUT [-o OUTPUT] [options]\n"
          "Maps a closed, connected, genus-0 triangle mesh onto the unit sphere, bijectively\n"
          "(Saba, Yavneh, Gotsman, Sheffer: Practical Spherical Embedding of Manifold Triangle Meshes).\n\n"
-         "  INPUT                 a mesh CGAL can read: .off, .obj, .ply, .stl\n"
+         "  INPUT                 a mesh: .off (also gzip-compressed, .off.gz), .obj, .ply, .stl\n"
          "  -o, --output FILE     where to write the sphere mesh (.off or .ply), same vertex order and faces\n"
          "                        (default: INPUT's name with _sphere.off)\n"
          "  -w, --weights W       uniform (default, Tutte), cotangent (conformal), mean_value\n"
@@ -73,11 +77,32 @@ bool ends_with(const std::string& s, const std::string& suffix)
   return s.size() >= suffix.size() && s.compare(s.size() - suffix.size(), suffix.size(), suffix) == 0;
 }
 
+// The output's folder must exist and take a new file, and the output itself must not be a folder.
+bool can_write_next_to(const std::string& path, std::string& error)
+{
+  const std::size_t slash = path.find_last_of('/');
+  const std::string folder = slash == std::string::npos ? "." : (slash == 0 ? "/" : path.substr(0, slash));
+  struct stat info;
+  if(::stat(folder.c_str(), &info) != 0 || !S_ISDIR(info.st_mode)) {
+    error = "cannot write '" + path + "': the folder '" + folder + "' does not exist";
+    return false;
+  }
+  if(::access(folder.c_str(), W_OK) != 0) {
+    error = "cannot write '" + path + "': the folder '" + folder + "' is not writable";
+    return false;
+  }
+  if(::stat(path.c_str(), &info) == 0 && S_ISDIR(info.st_mode)) {
+    error = "cannot write '" + path + "': it is a folder";
+    return false;
+  }
+  return true;
+}
+
 // Writes to a temporary file next to `path`, then renames it: a failure never leaves a half-written file.
 bool write_sphere(const std::string& path, const std::vector<Point>& sphere, const std::vector<std::vector<std::size_t>>& faces,
                   std::string& error)
 {
-  const std::string temporary = path + ".partial";
+  const std::string temporary = path + ".partial." + std::to_string(::getpid());
   {
     std::ofstream out(temporary);
     if(!out) { error = "cannot open '" + temporary + "' for writing"; return false; }
@@ -163,15 +188,16 @@ int main(int argc, char** argv)
   if(input.empty()) { print_usage(std::cerr); return EXIT_USAGE; }
   if(output.empty()) output = default_output(input);
 
+  // An output that cannot be written is found before the work, not after it.
+  std::string output_error;
+  if(!can_write_next_to(output, output_error)) { std::cerr << "error: " << output_error << "\n"; return EXIT_IO; }
+
   // Read as a polygon soup first: a soup can hold what a halfedge structure refuses, so the error is precise.
   std::vector<Point> points;
   std::vector<std::vector<std::size_t>> faces;
-  {
-    std::ifstream probe(input);
-    if(!probe) { std::cerr << "error: cannot open '" << input << "'\n"; return EXIT_IO; }
-  }
-  if(!CGAL::IO::read_polygon_soup(input, points, faces, CGAL::parameters::verbose(false)) || points.empty()) {
-    std::cerr << "error: cannot read a mesh from '" << input << "' (empty, truncated or not OFF/OBJ/PLY/STL)\n";
+  const SP::IO::File_read read = SP::IO::read_polygon_soup(input, points, faces);
+  if(!read) {
+    std::cerr << "error: " << read.message << " [" << SP::IO::get_file_status_name(read.status) << "]\n";
     return EXIT_IO;
   }
   const SP::Input_check check = SP::check_polygon_soup(points, faces);

@@ -46,6 +46,9 @@ struct Result {
   std::size_t initial_flipped_faces = 0;///< Non-positive spherical triangles of the initial guess.
   bool uniform_initial_guess_fallback = false; ///< The disks were embedded with uniform weights instead.
   std::size_t rejected_moves = 0;       ///< Vertex moves backtracked to preserve bijectivity.
+  /// Cotangent or mean-value weights of degenerate geometry (a corner angle below 1e-6 rad or above pi - 1e-6,
+  /// zero-area faces, coincident vertices) that were bounded to stay finite: each counts once per direction.
+  std::size_t clamped_weights = 0;
 
   /// `true` when `status == Error_code::OK`.
   explicit operator bool() const { return status == Error_code::OK; }

@@ -388,6 +388,9 @@ Result spherical_parameterize(const TriangleMesh& tm, VertexSphereMap vsm,
     Result result;
     result.status = weight_status;
     result.message = std::string(get_error_message(weight_status)) + ": " + weight_message;
+    result.clamped_weights = system.clamped_weights;
+    result.number_of_vertices = mesh.points.size();
+    result.number_of_faces = mesh.polygons.size();
     return result;
   }
 
@@ -397,6 +400,11 @@ Result spherical_parameterize(const TriangleMesh& tm, VertexSphereMap vsm,
 
   std::vector<internal::Vector3> x;
   Result result = internal::run_pipeline(mesh, system, options, solver, x);
+  result.clamped_weights = system.clamped_weights;
+  if(system.clamped_weights > 0) {
+    result.message += " [" + std::to_string(system.clamped_weights) + " weights of degenerate corners were clamped]";
+    if(options.verbose) std::cerr << "weights: " << system.clamped_weights << " of degenerate corners clamped\n";
+  }
   if(x.size() == mesh.points.size()) {
     using Point = typename boost::property_traits<VertexSphereMap>::value_type;
     for(auto v : vertices(tm)) {

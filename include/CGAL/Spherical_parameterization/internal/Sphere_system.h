@@ -32,6 +32,7 @@ struct Sphere_system {
   std::vector<double> weights;             // normalized: each row sums to one
   std::vector<double> row_sums;             // raw weight of (i, j) = weights[k] * row_sums[i]
   bool symmetric = true;                   // raw weights satisfy w_ij = w_ji
+  std::size_t clamped_weights = 0;         // weights with a degenerate corner or edge, bounded (see bounded_angle)
   std::vector<int> ring_faces;             // for the entry (i, j = ring[k]): the face (i, ring[k], ring[k+1])
   std::vector<std::array<int, 3>> triangles;
 
@@ -84,18 +85,26 @@ inline Sphere_system make_connectivity(const Mesh_arrays& mesh)
   return system;
 }
 
-inline double cotangent(const Vector3& a, const Vector3& b) // of the angle between a and b
-{
-  return dot(a, b) / length(cross(a, b));
-}
+// Degenerate corners (zero-area faces, coincident vertices, needles) make cotangent and mean-value weights
+// infinite or NaN. Their angles are bounded to [minimum_corner_angle, pi - minimum_corner_angle] and edge lengths
+// from below, so every weight stays finite; such weights are counted as clamped. The bound leaves real needles
+// (a CAD mesh's 0.0003 degree = 5e-6 rad slivers) untouched: only what double precision cannot represent moves.
+constexpr double minimum_corner_angle = 1e-6;
 
-inline double tangent_of_half_angle(const Vector3& a, const Vector3& b)
+// The angle between a and b in [0, pi]; 0 when either is zero. `clamped` is set when it had to be bounded.
+inline double bounded_angle(const Vector3& a, const Vector3& b, bool& clamped)
 {
-  return length(cross(a, b)) / (length(a) * length(b) + dot(a, b));
+  const double angle = std::atan2(length(cross(a, b)), dot(a, b));
+  const double pi = 3.14159265358979323846;
+  if(!(angle >= minimum_corner_angle)) { clamped = true; return minimum_corner_angle; }
+  if(angle > pi - minimum_corner_angle) { clamped = true; return pi - minimum_corner_angle; }
+  return angle;
 }
 
 // Raw weight of neighbour j = ring[k] in the equation of vertex i, from the two faces (i, j, next), (i, prev, j).
-inline double geometric_weight(Weighting weighting, const std::vector<Vector3>& p, std::size_t i, int prev, int j, int next)
+// `minimum_length` bounds the edge length of mean-value weights from below.
+inline double geometric_weight(Weighting weighting, const std::vector<Vector3>& p, std::size_t i, int prev, int j, int next,
+                               double minimum_length, bool& clamped)
 {
   const Vector3& xi = p[i];
   const Vector3& xj = p[static_cast<std::size_t>(j)];
@@ -103,22 +112,36 @@ inline double geometric_weight(Weighting weighting, const std::vector<Vector3>& 
   const Vector3& xp = p[static_cast<std::size_t>(prev)];
   switch(weighting) {
     case Weighting::COTANGENT:
-      return 0.5 * (cotangent(xi - xn, xj - xn) + cotangent(xi - xp, xj - xp));
-    case Weighting::MEAN_VALUE:
-      return (tangent_of_half_angle(xj - xi, xn - xi) + tangent_of_half_angle(xp - xi, xj - xi)) / length(xj - xi);
+      return 0.5 * (1. / std::tan(bounded_angle(xi - xn, xj - xn, clamped)) + 1. / std::tan(bounded_angle(xi - xp, xj - xp, clamped)));
+    case Weighting::MEAN_VALUE: {
+      double edge = length(xj - xi);
+      if(!(edge >= minimum_length)) { clamped = true; edge = minimum_length; }
+      return (std::tan(0.5 * bounded_angle(xj - xi, xn - xi, clamped)) + std::tan(0.5 * bounded_angle(xp - xi, xj - xi, clamped))) / edge;
+    }
     default:
       return 1.;
   }
 }
 
-// Fills and normalizes the weights. `user_weight(i, j)` is used for Weighting::USER_MAP.
-// Returns OK, or INVALID_WEIGHTS with a message naming the first bad vertex.
+// Fills and normalizes the weights. `user_weight(i, j)` is used for Weighting::USER_MAP (never clamped: the
+// user's weights are taken as given). Returns OK, or INVALID_WEIGHTS with a message naming the first bad vertex
+// (a non-finite weight, or weights that do not sum to a positive value, e.g. cotangent weights around a vertex
+// whose obtuse corners outweigh the rest).
 inline Error_code assign_weights(Sphere_system& system, const Mesh_arrays& mesh, Weighting weighting,
                                  const std::function<double(std::size_t, int)>& user_weight, std::string& message)
 {
   const std::size_t n = system.number_of_vertices;
   system.weights.assign(system.neighbors.size(), 1.);
   system.row_sums.assign(n, 1.);
+  system.clamped_weights = 0;
+  // Edge lengths below 1e-12 of the bounding box diagonal (coincident vertices) count as that length.
+  Vector3 low = n > 0 ? mesh.points[0] : Vector3(), high = low;
+  for(const Vector3& q : mesh.points) {
+    low = Vector3(std::min(low.x, q.x), std::min(low.y, q.y), std::min(low.z, q.z));
+    high = Vector3(std::max(high.x, q.x), std::max(high.y, q.y), std::max(high.z, q.z));
+  }
+  const double diagonal = length(high - low);
+  const double minimum_length = diagonal > 0. && std::isfinite(diagonal) ? 1e-12 * diagonal : 1e-300;
   for(std::size_t i = 0; i < n; ++i) {
     const std::size_t begin = system.offsets[i], end = system.offsets[i + 1], d = end - begin;
     double sum = 0.;
@@ -126,8 +149,10 @@ inline Error_code assign_weights(Sphere_system& system, const Mesh_arrays& mesh,
       const int j = system.neighbors[k];
       const int next = system.neighbors[begin + (k - begin + 1) % d];
       const int prev = system.neighbors[begin + (k - begin + d - 1) % d];
+      bool clamped = false;
       const double w = weighting == Weighting::USER_MAP ? user_weight(i, j)
-                                                        : geometric_weight(weighting, mesh.points, i, prev, j, next);
+                                                        : geometric_weight(weighting, mesh.points, i, prev, j, next, minimum_length, clamped);
+      system.clamped_weights += clamped;
       if(!std::isfinite(w)) {
         message = "the weight of edge (" + std::to_string(i) + ", " + std::to_string(j) + ") is not finite (degenerate geometry?)";
         return Error_code::INVALID_WEIGHTS;
