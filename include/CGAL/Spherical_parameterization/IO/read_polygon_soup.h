@@ -16,6 +16,7 @@
 #include <charconv>
 #include <cstddef>
 #include <cstdlib>
+#include <filesystem>
 #include <fstream>
 #include <string>
 #include <system_error>
@@ -266,12 +267,14 @@ inline File_read read_file_contents(const std::string& path, std::string& conten
 {
   using internal::file_error;
   contents.clear();
+  // A folder opens as a file on some systems, with a meaningless size.
+  std::error_code ignored;
+  if(std::filesystem::is_directory(path, ignored)) return file_error(File_status::CANNOT_OPEN, "'" + path + "' is a folder");
   std::ifstream in(path, std::ios::binary);
   if(!in) return file_error(File_status::CANNOT_OPEN, "cannot open '" + path + "'");
-  // A folder opens as a file on some systems and then reads as empty: ask for its size instead.
   in.seekg(0, std::ios::end);
   const std::streamoff size = in.tellg();
-  if(!in || size < 0) return file_error(File_status::CANNOT_OPEN, "cannot read '" + path + "' (a folder?)");
+  if(!in || size < 0) return file_error(File_status::CANNOT_OPEN, "cannot read '" + path + "'");
   in.seekg(0, std::ios::beg);
   contents.resize(static_cast<std::size_t>(size));
   if(size > 0 && !in.read(&contents[0], size)) return file_error(File_status::CANNOT_OPEN, "cannot read '" + path + "'");
