@@ -60,7 +60,7 @@ expect_file_error "PLY text named .off" "$scratch/ply_named.off" UNKNOWN_FORMAT
 printf 'solid nothing\nendsolid\n' > "$scratch/garbage.stl"
 expect_file_error "an STL without facets" "$scratch/garbage.stl" EMPTY_FILE
 printf 'this is not a mesh\n' > "$scratch/garbage.obj"
-expect_file_error "OBJ garbage" "$scratch/garbage.obj" EMPTY_FILE
+expect_file_error "OBJ garbage" "$scratch/garbage.obj" UNKNOWN_FORMAT
 head -c 100000 "$shared/bad_input/large_holes_handles_dragon_vrip.off.gz" > "$scratch/cut.off.gz"
 expect_file_error "truncated gzip" "$scratch/cut.off.gz" TRUNCATED
 sed '5,$d' "$bunny" > "$scratch/cut_bunny.off"
@@ -83,7 +83,7 @@ awk "BEGIN { exit !($user + $system < 2.0) }" || { echo "FAIL: refusing the drag
 [ ! -e "$scratch/x.off" ] || { echo "FAIL: an output was written for the dragon"; failures=$((failures + 1)); }
 
 # The triakis tetrahedron has no balanced solution: exit 1, the status said, and the certified fallback written.
-cat > "$scratch/triakis.off" <<'OFF'
+cat > "$scratch/triakis.off" <<'MESH'
 OFF
 8 12 0
 1 1 1
@@ -106,7 +106,7 @@ OFF
 3 1 3 7
 3 3 2 7
 3 2 1 7
-OFF
+MESH
 "$tool" "$scratch/triakis.off" -o "$scratch/triakis_sphere.off" > "$scratch/out.txt" 2> "$scratch/err.txt"; check "triakis tetrahedron" 1 $?
 grep -q "NO_BALANCED_SOLUTION" "$scratch/err.txt" || { echo "FAIL: triakis status: $(cat "$scratch/err.txt")"; failures=$((failures + 1)); }
 grep -q "certified bijective" "$scratch/err.txt" || { echo "FAIL: triakis fallback not certified: $(cat "$scratch/err.txt")"; failures=$((failures + 1)); }
