@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
 # The unit tests under AddressSanitizer + UndefinedBehaviorSanitizer on the small meshes, then the libFuzzer
 # target for a bounded time. Both built with clang into ${SANITIZE_BUILD_DIR:-build-sanitize}; clang and its
-# runtime are installed when missing (Debian 12: clang-14, libclang-rt-14-dev).
+# runtime are installed when missing (Debian 12: clang-14, libclang-rt-14-dev). Run scripts/setup.sh first (as
+# scripts/run_tests.sh does): it installs the other packages and extracts CGAL's sample meshes.
 # Usage: scripts/run_sanitizers.sh [fuzz seconds, default 60]
 set -euo pipefail
 cd "$(dirname "$0")/.."
@@ -15,7 +16,8 @@ start=$(date +%s)
 flags="-O1 -g -fno-omit-frame-pointer -fsanitize=address,undefined -fno-sanitize-recover=undefined"
 CC=clang-14 CXX=clang++-14 cmake -S . -B "$build" -DCMAKE_BUILD_TYPE=None -DCMAKE_CXX_FLAGS="$flags" \
   -DCMAKE_EXE_LINKER_FLAGS="-fsanitize=address,undefined" -DSPHERICAL_PARAMETERIZATION_BUILD_FUZZER=ON \
-  -DSPHERICAL_PARAMETERIZATION_BUILD_EXAMPLES=OFF -DSPHERICAL_PARAMETERIZATION_BUILD_BENCHMARKS=OFF >/dev/null
+  -DSPHERICAL_PARAMETERIZATION_BUILD_EXAMPLES=OFF -DSPHERICAL_PARAMETERIZATION_BUILD_BENCHMARKS=OFF \
+  -DSPHERICAL_PARAMETERIZATION_CGAL_DATA="$PWD/${BUILD_DIR:-build}/cgal_data/data/meshes" >/dev/null
 # One unit-test binary and the fuzzer only: each sanitized CGAL + Eigen translation unit costs minutes.
 cmake --build "$build" -j2 --target test_spherical_parameterization fuzz_spherical_parameterization
 echo "== sanitizer build: $(( $(date +%s) - start )) s"

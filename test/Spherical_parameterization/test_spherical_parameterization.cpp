@@ -459,6 +459,15 @@ TEST(Certificate, DetectsFlipsAndDoubleCovers)
   // All vertices on a great circle: degenerate, not positive.
   for(auto v : m.vertices()) sphere[v] = Point(sphere[v].x(), sphere[v].y(), 0.);
   EXPECT_FALSE(SP::is_bijective_on_sphere(m, sphere));
+
+  // A non-finite point is not positive, and never reaches the exact arithmetic (found by the sanitizer build,
+  // where CGAL's assertions are on: a backtracked Gauss-Seidel move on the octahedron went through the centre).
+  const double nan = std::numeric_limits<double>::quiet_NaN(), inf = std::numeric_limits<double>::infinity();
+  const SPI::Vector3 e1(1, 0, 0), e2(0, 1, 0), e3(0, 0, 1);
+  EXPECT_TRUE(SPI::is_positive(e1, e2, e3));
+  EXPECT_FALSE(SPI::is_positive(SPI::Vector3(nan, 0, 0), e2, e3));
+  EXPECT_FALSE(SPI::is_positive(e1, SPI::Vector3(0, inf, 0), e3));
+  EXPECT_FALSE(SPI::is_positive(e1, e2, SPI::Vector3(0, 0, -inf)));
 }
 
 // ---------------------------------------------------------------------------------------------------------------

@@ -32,7 +32,7 @@ struct Sphere_system {
   std::vector<double> weights;             // normalized: each row sums to one
   std::vector<double> row_sums;             // raw weight of (i, j) = weights[k] * row_sums[i]
   bool symmetric = true;                   // raw weights satisfy w_ij = w_ji
-  std::size_t clamped_weights = 0;         // weights with a degenerate corner or edge, bounded (see bounded_angle)
+  std::size_t clamped_weights = 0;         // weights with a degenerate corner or edge, bounded (see out_of_bounds)
   std::vector<int> ring_faces;             // for the entry (i, j = ring[k]): the face (i, ring[k], ring[k+1])
   std::vector<std::array<int, 3>> triangles;
 
@@ -86,19 +86,38 @@ inline Sphere_system make_connectivity(const Mesh_arrays& mesh)
 }
 
 // Degenerate corners (zero-area faces, coincident vertices, needles) make cotangent and mean-value weights
-// infinite or NaN. Their angles are bounded to [minimum_corner_angle, pi - minimum_corner_angle] and edge lengths
-// from below, so every weight stays finite; such weights are counted as clamped. The bound leaves real needles
-// (a CAD mesh's 0.0003 degree = 5e-6 rad slivers) untouched: only what double precision cannot represent moves.
+// infinite or NaN. Angles outside [minimum_corner_angle, pi - minimum_corner_angle] count as the nearest bound,
+// and edge lengths are bounded from below, so every weight stays finite; such weights are counted as clamped.
+// The bound leaves real needles (a CAD mesh's 0.0003 degree = 5e-6 rad slivers) untouched, and every other
+// corner gets exactly the usual formula.
 constexpr double minimum_corner_angle = 1e-6;
 
-// The angle between a and b in [0, pi]; 0 when either is zero. `clamped` is set when it had to be bounded.
-inline double bounded_angle(const Vector3& a, const Vector3& b, bool& clamped)
+// -1: the angle between a and b is below the bound (or undefined: a zero vector), 1: above pi minus the bound.
+inline int out_of_bounds(double sine_length, double cosine_length)
 {
-  const double angle = std::atan2(length(cross(a, b)), dot(a, b));
-  const double pi = 3.14159265358979323846;
-  if(!(angle >= minimum_corner_angle)) { clamped = true; return minimum_corner_angle; }
-  if(angle > pi - minimum_corner_angle) { clamped = true; return pi - minimum_corner_angle; }
-  return angle;
+  const double angle = std::atan2(sine_length, cosine_length);
+  if(!(angle >= minimum_corner_angle)) return -1;
+  return angle > 3.14159265358979323846 - minimum_corner_angle ? 1 : 0;
+}
+
+// Cotangent of the angle between a and b.
+inline double bounded_cotangent(const Vector3& a, const Vector3& b, bool& clamped)
+{
+  const double s = length(cross(a, b)), c = dot(a, b);
+  const int side = out_of_bounds(s, c);
+  if(side == 0) return c / s;
+  clamped = true;
+  return -side / std::tan(minimum_corner_angle);
+}
+
+// Tangent of half the angle between a and b.
+inline double bounded_tangent_of_half_angle(const Vector3& a, const Vector3& b, bool& clamped)
+{
+  const double s = length(cross(a, b)), c = dot(a, b);
+  const int side = out_of_bounds(s, c);
+  if(side == 0) return s / (length(a) * length(b) + c);
+  clamped = true;
+  return side < 0 ? std::tan(0.5 * minimum_corner_angle) : 1. / std::tan(0.5 * minimum_corner_angle);
 }
 
 // Raw weight of neighbour j = ring[k] in the equation of vertex i, from the two faces (i, j, next), (i, prev, j).
@@ -112,11 +131,11 @@ inline double geometric_weight(Weighting weighting, const std::vector<Vector3>& 
   const Vector3& xp = p[static_cast<std::size_t>(prev)];
   switch(weighting) {
     case Weighting::COTANGENT:
-      return 0.5 * (1. / std::tan(bounded_angle(xi - xn, xj - xn, clamped)) + 1. / std::tan(bounded_angle(xi - xp, xj - xp, clamped)));
+      return 0.5 * (bounded_cotangent(xi - xn, xj - xn, clamped) + bounded_cotangent(xi - xp, xj - xp, clamped));
     case Weighting::MEAN_VALUE: {
       double edge = length(xj - xi);
       if(!(edge >= minimum_length)) { clamped = true; edge = minimum_length; }
-      return (std::tan(0.5 * bounded_angle(xj - xi, xn - xi, clamped)) + std::tan(0.5 * bounded_angle(xp - xi, xj - xi, clamped))) / edge;
+      return (bounded_tangent_of_half_angle(xj - xi, xn - xi, clamped) + bounded_tangent_of_half_angle(xp - xi, xj - xi, clamped)) / edge;
     }
     default:
       return 1.;

@@ -17,9 +17,12 @@ namespace Spherical_parameterization {
 namespace internal {
 
 // True when the spherical triangle (a, b, c) is positively oriented: orientation(ORIGIN, a, b, c) is POSITIVE,
-// decided exactly on the double coordinates (filtered, so cheap in the common case).
+// decided exactly on the double coordinates (filtered, so cheap in the common case). A non-finite point is not
+// positive: the exact arithmetic cannot take it (a CGAL assertion, undefined without assertions), and a
+// backtracked move pulled through the centre of the sphere yields one.
 inline bool is_positive(const Vector3& a, const Vector3& b, const Vector3& c)
 {
+  if(!is_finite(a) || !is_finite(b) || !is_finite(c)) return false;
   using P = CGAL::Epick::Point_3;
   return CGAL::orientation(P(CGAL::ORIGIN), P(a.x, a.y, a.z), P(b.x, b.y, b.z), P(c.x, c.y, c.z)) == CGAL::POSITIVE;
 }
