@@ -64,8 +64,9 @@ bool parse_weights(const std::string& name, SP::Weighting& weighting)
   return true;
 }
 
-std::string default_output(const std::string& input)
+std::string default_output(std::string input)
 {
+  if(input.size() > 3 && input.compare(input.size() - 3, 3, ".gz") == 0) input.resize(input.size() - 3);  // mesh.off.gz
   const std::size_t slash = input.find_last_of('/');
   const std::size_t dot = input.find_last_of('.');
   const std::string stem = (dot != std::string::npos && (slash == std::string::npos || dot > slash)) ? input.substr(0, dot) : input;

@@ -16,6 +16,7 @@
 #include <cstddef>
 #include <cstdint>
 #include <functional>
+#include <sstream>
 #include <string>
 #include <utility>
 #include <vector>
@@ -180,7 +181,9 @@ inline Error_code assign_weights(Sphere_system& system, const Mesh_arrays& mesh,
       sum += w;
     }
     if(!(sum > 0.) || !std::isfinite(1. / sum)) {
-      message = "the weights around vertex " + std::to_string(i) + " sum to " + std::to_string(sum);
+      std::ostringstream text;
+      text << "the weights around vertex " << i << " sum to " << sum << " (they must sum to a positive value)";
+      message = text.str();
       return Error_code::INVALID_WEIGHTS;
     }
     for(std::size_t k = begin; k < end; ++k) system.weights[k] /= sum;
