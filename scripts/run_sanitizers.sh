@@ -31,10 +31,11 @@ start=$(date +%s)
   || status=$?
 echo "== sanitized unit tests: exit $status, $(( $(date +%s) - start )) s"
 
-# Fuzzing: a corpus seeded with the small meshes of ../shared/meshes and every bad input under 64 KiB.
+# Fuzzing: a corpus seeded with the small meshes of ../shared/meshes, every bad input under 64 KiB and what the
+# fuzzer found before (test/Spherical_parameterization/fuzz_regressions).
 corpus="$build/fuzz_corpus"
 mkdir -p "$corpus"
-for f in ../shared/meshes/*.off ../shared/meshes/bad_input/*.off; do
+for f in ../shared/meshes/*.off ../shared/meshes/bad_input/*.off test/Spherical_parameterization/fuzz_regressions/*.off; do
   [ -f "$f" ] && [ "$(stat -c %s "$f")" -le 65536 ] && cp -f "$f" "$corpus/"
 done
 start=$(date +%s)
