@@ -33,7 +33,10 @@ echo "== sanitized unit tests: exit $status, $(( $(date +%s) - start )) s"
 
 # Fuzzing: a corpus seeded with the small meshes of ../shared/meshes, every bad input under 64 KiB and what the
 # fuzzer found before (test/Spherical_parameterization/fuzz_regressions).
+# A fresh corpus each run, as on CI's fresh clone: a corpus kept from earlier runs grows until loading it takes
+# the whole time budget.
 corpus="$build/fuzz_corpus"
+rm -rf "$corpus"
 mkdir -p "$corpus"
 for f in ../shared/meshes/*.off ../shared/meshes/bad_input/*.off test/Spherical_parameterization/fuzz_regressions/*.off; do
   [ -f "$f" ] && [ "$(stat -c %s "$f")" -le 65536 ] && cp -f "$f" "$corpus/"
