@@ -32,7 +32,7 @@ struct Result {
 
   std::size_t flipped_faces = 0;        ///< Spherical triangles with `orientation(ORIGIN,p,q,r) != POSITIVE` (exact).
   double total_signed_area = 0.;        ///< Sum of the signed spherical areas (4 pi when bijective).
-  bool bijective = false;               ///< No flipped face and total area 4 pi.
+  bool bijective = false;               ///< No flipped face and a generic point covered once (exact predicates).
 
   Stage_statistics initial_guess;       ///< Stage 1: separator, two disks, Moebius, stereographic projection.
   Stage_statistics gauss_seidel;        ///< Stage 2: projected Gauss-Seidel while `Res` decreases.

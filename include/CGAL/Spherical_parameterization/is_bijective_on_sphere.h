@@ -25,7 +25,7 @@ struct Sphere_map_certificate {
   std::size_t flipped_faces = 0;     ///< Faces whose spherical triangle is not positively oriented (exact predicate).
   double total_signed_area = 0.;     ///< Sum of the signed areas of the spherical triangles (4 pi for a bijection).
   bool valid_mesh = false;           ///< The mesh passes `check_input()` (closed, connected, manifold, oriented, genus 0).
-  bool bijective = false;            ///< A valid mesh, no flipped face and total area 4 pi.
+  bool bijective = false;            ///< A valid mesh, no flipped face and a generic point covered once (exact).
 };
 
 namespace internal {
@@ -57,8 +57,9 @@ Mesh_arrays read_connectivity(const TriangleMesh& tm, const NamedParameters& np)
 /// Certifies a map `vsm` of the vertices of the closed triangle mesh `tm` to points on (or radially projected
 /// onto) the unit sphere: the mesh must pass `check_input()` (the argument below needs a closed, connected,
 /// oriented genus-0 surface), every spherical triangle must be positively oriented, `CGAL::orientation(ORIGIN, p, q, r)
-/// == POSITIVE` decided exactly, and the signed spherical areas must add up to 4 pi (with every triangle positive
-/// the total is 4 pi times the degree of the map, so this excludes multiple coverings).
+/// == POSITIVE` decided exactly, and a generic point of the sphere must be covered by exactly one triangle, also
+/// decided exactly (with every triangle positive that count is the degree of the map, so this excludes multiple
+/// coverings). The signed spherical areas are reported (their sum is 4 pi for a bijection).
 /// \cgalNamedParamsBegin
 ///   \cgalParamNBegin{vertex_index_map} \cgalParamDescription{indices of the vertices}
 ///     \cgalParamDefault{an automatically indexed internal map} \cgalParamNEnd
@@ -93,7 +94,7 @@ Sphere_map_certificate certify_sphere_map(const TriangleMesh& tm, VertexSphereMa
   }
   certificate.flipped_faces = flipped;
   certificate.total_signed_area = area;
-  certificate.bijective = certificate.valid_mesh && flipped == 0 && std::abs(area - 4. * CGAL_PI) < CGAL_PI;
+  certificate.bijective = certificate.valid_mesh && flipped == 0 && internal::covering_number(mesh.triangles, x) == 1;
   return certificate;
 }
 
