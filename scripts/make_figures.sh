@@ -13,19 +13,7 @@ cd "$(dirname "$0")/.."
 render_only=0
 [ "${1:-}" = "--render-only" ] && render_only=1
 
-packages=(povray fonts-dejavu-core pngquant)
-missing=()
-for p in "${packages[@]}"; do
-  # Not `dpkg -s`: it also succeeds for a removed package whose configuration files are left.
-  dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")
-done
-if [ ${#missing[@]} -gt 0 ]; then
-  echo "== installing: ${missing[*]}"
-  sudo=""
-  [ "$(id -u)" -eq 0 ] || sudo="sudo"
-  $sudo apt-get update -qq
-  DEBIAN_FRONTEND=noninteractive $sudo apt-get install -y -qq --no-install-recommends "${missing[@]}" >/dev/null
-fi
+bash scripts/install_missing.sh povray fonts-dejavu-core pngquant
 
 build="${BUILD_DIR:-build}"
 shared_meshes="${SHARED_MESHES:-../shared/meshes}"

@@ -4,22 +4,9 @@
 set -euo pipefail
 cd "$(dirname "$0")/.."
 
-packages=(cmake g++ libcgal-dev libcgal-demo libeigen3-dev libmetis-dev libboost-dev libgtest-dev ccache)
 # TBB is optional for users; the tests check that CGAL::Parallel_tag gives the same map as Sequential_tag.
-packages+=(libtbb-dev)
-missing=()
 # Doxygen builds the manual's reference pages; ctest checks them for warnings (doc.manual, about a second).
-packages+=(doxygen)
-for p in "${packages[@]}"; do
-  dpkg -s "$p" >/dev/null 2>&1 || missing+=("$p")
-done
-if [ ${#missing[@]} -gt 0 ]; then
-  echo "== installing: ${missing[*]}"
-  sudo=""
-  [ "$(id -u)" -eq 0 ] || sudo="sudo"
-  $sudo apt-get update -qq
-  DEBIAN_FRONTEND=noninteractive $sudo apt-get install -y -qq --no-install-recommends "${missing[@]}" >/dev/null
-fi
+bash scripts/install_missing.sh cmake g++ libcgal-dev libcgal-demo libeigen3-dev libmetis-dev libboost-dev libgtest-dev ccache zlib1g-dev libtbb-dev doxygen
 
 build="${BUILD_DIR:-build}"
 cmake -S . -B "$build" -DCMAKE_BUILD_TYPE=Release >/dev/null

@@ -6,8 +6,8 @@
 // --sequential uses CGAL::Sequential_tag.
 //
 // Each configuration runs N times; the table gives the median seconds and the figures of the median run.
-// Peak memory is the process' VmHWM after the run (monotone over the program: run one mesh per process for
-// per-mesh peaks).
+// Peak memory is the process' VmHWM after the run, reading the mesh included (monotone over the program: run one
+// mesh per process for per-mesh peaks, as scripts/run_benchmark.sh does). --csv appends to an existing file.
 
 #include <CGAL/Spherical_parameterization/spherical_parameterize.h>
 
@@ -73,10 +73,13 @@ int main(int argc, char** argv)
   }
   if(meshes.empty()) { std::cerr << "usage: benchmark_spherical_parameterization [options] MESH...\n"; return 2; }
 
+  // An existing CSV file is appended to, so that a script can run one mesh per process (per-mesh peak memory).
   std::ofstream csv;
   if(!csv_path.empty()) {
-    csv.open(csv_path);
-    csv << "mesh,faces,weights,solver,status,initial_s,gauss_seidel_s,newton_s,total_s,gs_sweeps,newton_steps,res,max_tangential,flips,peak_mb\n";
+    const bool exists = std::ifstream(csv_path).good();
+    csv.open(csv_path, std::ios::app);
+    if(!exists)
+      csv << "mesh,faces,weights,solver,status,initial_s,gauss_seidel_s,newton_s,total_s,gs_sweeps,newton_steps,res,max_tangential,flips,peak_mb,runs\n";
   }
   std::printf("%-28s %9s %-10s %-6s %-14s %8s %8s %8s %8s %10s %10s %6s %8s\n", "mesh", "faces", "weights", "solver",
               "status", "init s", "gs s", "newton s", "total s", "Res", "max tang", "flips", "peak MB");
@@ -109,7 +112,7 @@ int main(int argc, char** argv)
           csv << name << ',' << m.number_of_faces << ',' << w << ',' << s << ',' << SP::get_error_name(m.status) << ','
               << m.initial_guess.seconds << ',' << m.gauss_seidel.seconds << ',' << m.newton.seconds << ',' << m.total_seconds
               << ',' << m.gauss_seidel.iterations << ',' << m.newton.iterations << ',' << m.residual << ','
-              << m.max_tangential_residual << ',' << m.flipped_faces << ',' << peak << '\n';
+              << m.max_tangential_residual << ',' << m.flipped_faces << ',' << peak << ',' << runs << '\n';
       }
   }
   return 0;

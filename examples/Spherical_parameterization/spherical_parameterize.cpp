@@ -1,10 +1,11 @@
 // Command line: map a closed genus-0 triangle mesh onto the unit sphere, bijectively.
 //
-//   spherical_parameterize input.(off|obj|ply|stl) [-o sphere.off] [options]      (--help for all of them)
+//   spherical_parameterize input.(off|off.gz|obj|ply|stl) [-o sphere.off] [options]      (--help for all of them)
 //
 // The output keeps the input's vertex order and face list; coordinates are written with 17 significant digits.
 // stdout: the figures (text, or one JSON object with --json); stderr: progress, warnings and errors.
 
+#include <CGAL/Spherical_parameterization/IO/read_polygon_soup.h>
 #include <CGAL/Spherical_parameterization/check_input.h>
 #include <CGAL/Spherical_parameterization/spherical_parameterize.h>
 
@@ -35,6 +36,9 @@
 #include <thread>
 #include <vector>
 
+#include <sys/stat.h>
+#include <unistd.h>
+
 namespace SP = CGAL::Spherical_parameterization;
 using Kernel = CGAL::Epick;
 using Point = Kernel::Point_3;
@@ -52,10 +56,11 @@ void print_usage(std::ostream& out)
       << "Maps a closed, connected, genus-0 triangle mesh onto the unit sphere, bijectively\n"
          "(Saba, Yavneh, Gotsman, Sheffer: Practical Spherical Embedding of Manifold Triangle Meshes).\n"
          "Success means certified: every spherical triangle is positively oriented (exact predicate),\n"
-         "their areas add up to 4 pi, and the paper's residual Res is below the tolerance.\n"
+         "a generic point of the sphere lies in exactly one of them (the map has degree 1), and the paper's\n"
+         "residual Res is below the tolerance.\n"
          "\n"
          "Input and output:\n"
-         "  INPUT                 a mesh CGAL can read: .off, .obj, .ply, .stl\n"
+         "  INPUT                 a mesh: .off (also gzip-compressed, .off.gz), .obj, .ply, .stl\n"
          "  -o, --output FILE     the sphere mesh, .off or .ply: the input's vertices in the same order and its\n"
          "                        faces, 17 significant digits (default: INPUT without extension + _sphere.off)\n"
          "\n"
@@ -91,7 +96,8 @@ void print_usage(std::ostream& out)
          "  format (\"spherical_parameterize/1\"), input, output (null if nothing written), status (e.g. \"OK\",\n"
          "  \"GENUS_NOT_ZERO\"), success, message, vertices, faces, weights, tolerance, residual (Res),\n"
          "  max_tangential_residual, flipped_faces, total_signed_area, bijective, initial_flipped_faces,\n"
-         "  uniform_initial_guess_fallback, admissible_weights, clamped_weights, rejected_moves, separator_size, cut_loop_length,\n"
+         "  uniform_initial_guess_fallback, admissible_weights, raised_weights, clamped_weights, rejected_moves,\n"
+         "  separator_size, cut_loop_length,\n"
          "  stages.{initial_guess,gauss_seidel,newton}.{seconds,iterations,residual},\n"
          "  seconds.{read,map,write,total}.\n"
          "\n"
@@ -282,6 +288,7 @@ void print_json(std::ostream& out, const SP::Result& r, const Run_figures& run)
       << "  \"initial_flipped_faces\": " << json_count(r.initial_flipped_faces, computed) << ",\n"
       << "  \"uniform_initial_guess_fallback\": " << (r.uniform_initial_guess_fallback ? "true" : "false") << ",\n"
       << "  \"admissible_weights\": " << (r.admissible_weights ? "true" : "false") << ",\n"
+      << "  \"raised_weights\": " << r.raised_weights << ",\n"
       << "  \"clamped_weights\": " << r.clamped_weights << ",\n"
       << "  \"rejected_moves\": " << json_count(r.rejected_moves, computed) << ",\n"
       << "  \"separator_size\": " << json_count(r.separator_size, computed) << ",\n"
@@ -527,7 +534,7 @@ void explain_missing_input(const std::string& input)
   std::error_code error;
   const fs::path path(input);
   if(fs::is_directory(path, error)) {
-    std::cerr << "error: '" << input << "' is a folder, not a mesh file\n";
+    std::cerr << "error: '" << input << "' is a folder, not a mesh file [CANNOT_OPEN]\n";
     std::exit(EXIT_IO);
   }
   if(fs::exists(path, error)) return;
@@ -536,25 +543,47 @@ void explain_missing_input(const std::string& input)
   for(fs::directory_iterator it(folder, error), end; !error && it != end; it.increment(error))
     if(it->is_regular_file(error)) names.push_back(it->path().filename().string());
   const std::string guess = closest(path.filename().string(), names);
-  std::cerr << "error: no such file: '" << input << "'\n";
+  std::cerr << "error: no such file: '" << input << "' [CANNOT_OPEN]\n";
   if(!guess.empty())
     std::cerr << "       did you mean '" << (path.has_parent_path() ? (folder / guess).string() : guess) << "'?\n";
   std::exit(EXIT_IO);
 }
 
-std::string default_output(const std::string& input)
+std::string default_output(std::string input)
 {
+  if(input.size() > 3 && input.compare(input.size() - 3, 3, ".gz") == 0) input.resize(input.size() - 3);  // mesh.off.gz
   const std::size_t slash = input.find_last_of('/');
   const std::size_t dot = input.find_last_of('.');
   const std::string stem = (dot != std::string::npos && (slash == std::string::npos || dot > slash)) ? input.substr(0, dot) : input;
   return stem + "_sphere.off";
 }
 
+// The output's folder must exist and take a new file, and the output itself must not be a folder.
+bool can_write_next_to(const std::string& path, std::string& error)
+{
+  const std::size_t slash = path.find_last_of('/');
+  const std::string folder = slash == std::string::npos ? "." : (slash == 0 ? "/" : path.substr(0, slash));
+  struct stat info;
+  if(::stat(folder.c_str(), &info) != 0 || !S_ISDIR(info.st_mode)) {
+    error = "cannot write '" + path + "': the folder '" + folder + "' does not exist";
+    return false;
+  }
+  if(::access(folder.c_str(), W_OK) != 0) {
+    error = "cannot write '" + path + "': the folder '" + folder + "' is not writable";
+    return false;
+  }
+  if(::stat(path.c_str(), &info) == 0 && S_ISDIR(info.st_mode)) {
+    error = "cannot write '" + path + "': it is a folder";
+    return false;
+  }
+  return true;
+}
+
 // Writes to a temporary file next to `path`, then renames it: a failure never leaves a half-written file.
 bool write_sphere(const std::string& path, const std::vector<Point>& sphere, const std::vector<std::vector<std::size_t>>& faces,
                   std::string& error)
 {
-  const std::string temporary = path + ".partial";
+  const std::string temporary = path + ".partial." + std::to_string(::getpid());
   {
     std::ofstream out(temporary);
     if(!out) { error = "cannot open '" + temporary + "' for writing"; return false; }
@@ -603,17 +632,18 @@ int main(int argc, char** argv)
   Progress_line progress(!settings.quiet, start);
   std::signal(SIGINT, on_interrupt);
 
+  // An output that cannot be written is found before the work, not after it.
+  std::string output_error;
+  if(!can_write_next_to(output, output_error)) { std::cerr << "error: " << output_error << "\n"; return EXIT_IO; }
+
   // Read as a polygon soup first: a soup can hold what a halfedge structure refuses, so the error is precise.
   progress.phase("reading " + input);
   std::vector<Point> points;
   std::vector<std::vector<std::size_t>> faces;
-  {
-    std::ifstream probe(input);
-    if(!probe) { std::cerr << "error: cannot open '" << input << "'\n"; return EXIT_IO; }
-  }
-  if(!CGAL::IO::read_polygon_soup(input, points, faces, CGAL::parameters::verbose(false)) || points.empty()) {
+  const SP::IO::File_read read = SP::IO::read_polygon_soup(input, points, faces);
+  if(!read) {
     progress.clear();
-    std::cerr << "error: cannot read a mesh from '" << input << "' (empty, truncated or not OFF/OBJ/PLY/STL)\n";
+    std::cerr << "error: " << read.message << " [" << SP::IO::get_file_status_name(read.status) << "]\n";
     return EXIT_IO;
   }
   // Ctrl-C before the iterations: nothing to keep, so quit between the steps of the set-up.

@@ -13,6 +13,8 @@ if(NOT EXISTS ${SPHERICAL_PARAMETERIZATION_CGAL_DATA}/triceratops.off)
   message(WARNING "CGAL's sample meshes are not in ${SPHERICAL_PARAMETERIZATION_CGAL_DATA} (run scripts/setup.sh)")
 endif()
 
+set_property(DIRECTORY APPEND PROPERTY CMAKE_CONFIGURE_DEPENDS
+             ${CMAKE_CURRENT_SOURCE_DIR}/known_failures.txt ${CMAKE_CURRENT_SOURCE_DIR}/bad_input_cases.txt)
 file(STRINGS ${CMAKE_CURRENT_SOURCE_DIR}/known_failures.txt SP_KNOWN_FAILURES REGEX "^[^#].*")
 
 function(sp_add_corpus_case mesh_path weights)
@@ -52,4 +54,29 @@ foreach(weights uniform mean_value cotangent)
   foreach(mesh ${SP_CGAL_CORPUS})
     sp_add_corpus_case(${SPHERICAL_PARAMETERIZATION_CGAL_DATA}/${mesh}.off ${weights})
   endforeach()
+endforeach()
+
+# Files that must be refused: one ctest case each, with the exact code of bad_input_cases.txt.
+file(GLOB SP_BAD_INPUT RELATIVE "${SPHERICAL_PARAMETERIZATION_SHARED_MESHES}/bad_input"
+     "${SPHERICAL_PARAMETERIZATION_SHARED_MESHES}/bad_input/*")
+file(STRINGS ${CMAKE_CURRENT_SOURCE_DIR}/bad_input_cases.txt SP_BAD_INPUT_CASES REGEX "^[^#].*")
+set(SP_BAD_INPUT_LISTED "")
+foreach(line ${SP_BAD_INPUT_CASES})
+  string(REGEX MATCH "^([^ ]+) ([A-Z_]+)$" match "${line}")
+  if(NOT match)
+    message(FATAL_ERROR "bad_input_cases.txt: cannot parse '${line}'")
+  endif()
+  set(file ${CMAKE_MATCH_1})
+  set(code ${CMAKE_MATCH_2})
+  list(APPEND SP_BAD_INPUT_LISTED ${file})
+  add_test(NAME bad_input.${file}
+           COMMAND test_mesh_corpus --expect ${code} ${SPHERICAL_PARAMETERIZATION_SHARED_MESHES}/bad_input/${file})
+  set_tests_properties(bad_input.${file} PROPERTIES LABELS "bad_input" TIMEOUT 120)
+endforeach()
+foreach(file ${SP_BAD_INPUT})
+  if(NOT file IN_LIST SP_BAD_INPUT_LISTED)
+    add_test(NAME bad_input.${file}.not_listed
+             COMMAND ${CMAKE_COMMAND} -E echo "FAIL: ${file} has no expected code in bad_input_cases.txt")
+    set_tests_properties(bad_input.${file}.not_listed PROPERTIES LABELS "bad_input" WILL_FAIL TRUE)
+  endif()
 endforeach()

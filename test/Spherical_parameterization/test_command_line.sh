@@ -44,13 +44,96 @@ grep -q "GENUS_NOT_ZERO" "$scratch/err.txt" || { echo "FAIL: genus message"; cat
 "$tool" "$shared/bad_input/nonmanifold_edges_simplify_brain.off" -o "$scratch/x.off" 2> "$scratch/err.txt"; check "non-manifold edges rejected" 2 $?
 grep -q "NON_MANIFOLD_EDGE" "$scratch/err.txt" || { echo "FAIL: non-manifold message"; failures=$((failures + 1)); }
 [ ! -e "$scratch/x.off" ] || { echo "FAIL: an output was written for a rejected mesh"; failures=$((failures + 1)); }
-"$tool" "$scratch/does_not_exist.off" 2> /dev/null; check "missing input" 3 $?
-"$tool" "$shared/bad_input/garbage.off" -o "$scratch/x.off" 2> /dev/null; check "garbage input" 3 $?
-"$tool" "$shared/bad_input/empty.off" -o "$scratch/x.off" 2> /dev/null; check "empty input" 3 $?
+# Files that are not meshes: exit 3, the reader's status in the message, no output.
+expect_file_error() { # description, input, status name
+  "$tool" "$2" -q -o "$scratch/x.off" 2> "$scratch/err.txt"; check "$1" 3 $?
+  grep -q "\[$3\]" "$scratch/err.txt" || { echo "FAIL: $1: no [$3] in: $(cat "$scratch/err.txt")"; failures=$((failures + 1)); }
+  [ ! -e "$scratch/x.off" ] || { echo "FAIL: $1: an output was written"; failures=$((failures + 1)); rm -f "$scratch/x.off"; }
+}
+expect_file_error "missing input" "$scratch/does_not_exist.off" CANNOT_OPEN
+expect_file_error "a folder as input" "$scratch" CANNOT_OPEN
+expect_file_error "garbage input" "$shared/bad_input/garbage.off" UNKNOWN_FORMAT
+expect_file_error "empty input" "$shared/bad_input/empty.off" EMPTY_FILE
+expect_file_error "truncated input" "$shared/bad_input/truncated_horse.off" TRUNCATED
+printf 'ply\nformat ascii 1.0\nelement vertex 3\n' > "$scratch/ply_named.off"
+expect_file_error "PLY text named .off" "$scratch/ply_named.off" UNKNOWN_FORMAT
+printf 'solid nothing\nendsolid\n' > "$scratch/garbage.stl"
+expect_file_error "an STL without facets" "$scratch/garbage.stl" EMPTY_FILE
+printf 'this is not a mesh\n' > "$scratch/garbage.obj"
+expect_file_error "OBJ garbage" "$scratch/garbage.obj" UNKNOWN_FORMAT
+head -c 100000 "$shared/bad_input/large_holes_handles_dragon_vrip.off.gz" > "$scratch/cut.off.gz"
+expect_file_error "truncated gzip" "$scratch/cut.off.gz" TRUNCATED
+sed '5,$d' "$bunny" > "$scratch/cut_bunny.off"
+expect_file_error "OFF cut after 2 vertices" "$scratch/cut_bunny.off" TRUNCATED
+
+# Gzip input gives the same sphere as the plain file.
+gzip -c "$bunny" > "$scratch/bunny.off.gz"
+"$tool" "$scratch/bunny.off.gz" -q -o "$scratch/bunny_gz_sphere.off"; check "gzip input" 0 $?
+cmp -s "$scratch/bunny_gz_sphere.off" "$scratch/bunny_sphere.off" || { echo "FAIL: gzip input gives another sphere"; failures=$((failures + 1)); }
+
+# The 871k-face dragon (gzip) is refused within 2 s of CPU time (bash's time: wall, user, system seconds).
+TIMEFORMAT='%R %U %S'
+{ time "$tool" "$shared/bad_input/large_holes_handles_dragon_vrip.off.gz" -q -o "$scratch/x.off" 2> "$scratch/err.txt"; } 2> "$scratch/time.txt"
+check "dragon (871k faces, gzip) refused" 2 $?
+grep -q "\[HAS_BORDER\]" "$scratch/err.txt" || { echo "FAIL: dragon status: $(cat "$scratch/err.txt")"; failures=$((failures + 1)); }
+grep -q "407 boundary loop" "$scratch/err.txt" || { echo "FAIL: dragon message: $(cat "$scratch/err.txt")"; failures=$((failures + 1)); }
+read -r wall user system < "$scratch/time.txt"
+echo "   dragon: $wall s wall, $user + $system s CPU"
+awk "BEGIN { exit !($user + $system < 2.0) }" || { echo "FAIL: refusing the dragon took $user + $system s of CPU time"; failures=$((failures + 1)); }
+[ ! -e "$scratch/x.off" ] || { echo "FAIL: an output was written for the dragon"; failures=$((failures + 1)); }
+
+# The triakis tetrahedron has no balanced solution: exit 1, the status said, and the certified fallback written.
+cat > "$scratch/triakis.off" <<'MESH'
+OFF
+8 12 0
+1 1 1
+1 -1 -1
+-1 1 -1
+-1 -1 1
+0.5 0.5 -0.5
+-0.5 0.5 0.5
+0.5 -0.5 0.5
+-0.5 -0.5 -0.5
+3 0 1 4
+3 1 2 4
+3 2 0 4
+3 0 2 5
+3 2 3 5
+3 3 0 5
+3 0 3 6
+3 3 1 6
+3 1 0 6
+3 1 3 7
+3 3 2 7
+3 2 1 7
+MESH
+"$tool" "$scratch/triakis.off" -o "$scratch/triakis_sphere.off" > "$scratch/out.txt" 2> "$scratch/err.txt"; check "triakis tetrahedron" 1 $?
+grep -q "NO_BALANCED_SOLUTION" "$scratch/err.txt" || { echo "FAIL: triakis status: $(cat "$scratch/err.txt")"; failures=$((failures + 1)); }
+grep -q "certified bijective" "$scratch/err.txt" || { echo "FAIL: triakis fallback not certified: $(cat "$scratch/err.txt")"; failures=$((failures + 1)); }
+grep -q "flipped faces:   0" "$scratch/out.txt" || { echo "FAIL: triakis flips: $(cat "$scratch/out.txt")"; failures=$((failures + 1)); }
+[ -s "$scratch/triakis_sphere.off" ] || { echo "FAIL: no fallback map written for the triakis tetrahedron"; failures=$((failures + 1)); }
+
 "$tool" "$bunny" --weights nonsense 2> /dev/null; check "unknown weights" 4 $?
 "$tool" "$bunny" --frobnicate 2> /dev/null; check "unknown option" 4 $?
-"$tool" "$bunny" -q -o "$scratch/no/such/folder/out.off" 2> /dev/null; check "unwritable output" 3 $?
+
+# Outputs that cannot be written: exit 3 before any work, nothing left behind.
+expect_output_error() { # description, output path
+  "$tool" "$bunny" -q -o "$2" 2> "$scratch/err.txt"; check "$1" 3 $?
+  grep -q "cannot write\|cannot open\|cannot move" "$scratch/err.txt" || { echo "FAIL: $1: message: $(cat "$scratch/err.txt")"; failures=$((failures + 1)); }
+}
+expect_output_error "output folder missing" "$scratch/no/such/folder/out.off"
 ls "$scratch/no/such/folder" > /dev/null 2>&1 && { echo "FAIL: half-written output"; failures=$((failures + 1)); }
+touch "$scratch/a_file"
+expect_output_error "output folder is a file" "$scratch/a_file/out.off"
+mkdir -p "$scratch/a_folder.off"
+expect_output_error "output is a folder" "$scratch/a_folder.off"
+expect_output_error "output in /proc (no file can be created)" "/proc/spherical_parameterize_test.off"
+# A failed run leaves an existing output as it was, and no temporary file anywhere.
+cp "$scratch/bunny_sphere.off" "$scratch/keep.off"
+"$tool" "$shared/bad_input/genus1_rocker-arm.off" -q -o "$scratch/keep.off" 2> /dev/null; check "rejected mesh, existing output" 2 $?
+cmp -s "$scratch/keep.off" "$scratch/bunny_sphere.off" || { echo "FAIL: a rejected run changed an existing output"; failures=$((failures + 1)); }
+leftovers=$(find "$scratch" -name '*.partial*' | wc -l)
+[ "$leftovers" -eq 0 ] || { echo "FAIL: $leftovers temporary files left"; failures=$((failures + 1)); }
 
 # --- The user's side: help, JSON, progress, quiet, and a helpful message for each mistake. ---
 expect_error() { # description, expected exit code, text stderr must contain, arguments...
@@ -108,7 +191,7 @@ check "--json run" 0 $?
 # --admissible-weights: cotangent weights made symmetric and positive, reported in the JSON.
 "$tool" "$bunny" --json -w cotangent --admissible-weights -o "$scratch/admissible.off" > "$scratch/admissible.json" 2> /dev/null
 check "--admissible-weights run" 0 $?
-python3 -c "import json,sys; o=json.load(open(sys.argv[1])); assert o['admissible_weights'] is True and o['clamped_weights'] > 0 and o['status'] == 'OK', o" \
+python3 -c "import json,sys; o=json.load(open(sys.argv[1])); assert o['admissible_weights'] is True and o['raised_weights'] > 0 and o['status'] == 'OK', o" \
   "$scratch/admissible.json" || { echo "FAIL: --admissible-weights figures"; failures=$((failures + 1)); }
 # --json on an invalid mesh: the same keys, the error status, no output, figures null.
 "$tool" "$shared/bad_input/genus1_rocker-arm.off" --json -o "$scratch/bad.off" > "$scratch/bad.json" 2> /dev/null
@@ -117,7 +200,7 @@ python3 - "$scratch/good.json" "$scratch/bad.json" "$scratch/json.off" <<'JSON_C
 import json, math, os, sys
 keys = {"format", "input", "output", "status", "success", "message", "vertices", "faces", "weights", "tolerance",
         "residual", "max_tangential_residual", "flipped_faces", "total_signed_area", "bijective",
-        "initial_flipped_faces", "uniform_initial_guess_fallback", "admissible_weights", "clamped_weights",
+        "initial_flipped_faces", "uniform_initial_guess_fallback", "admissible_weights", "raised_weights", "clamped_weights",
         "rejected_moves", "separator_size",
         "cut_loop_length", "stages", "seconds"}
 good = json.load(open(sys.argv[1]))

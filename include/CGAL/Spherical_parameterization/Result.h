@@ -34,7 +34,7 @@ struct Result {
 
   std::size_t flipped_faces = 0;        ///< Spherical triangles with `orientation(ORIGIN,p,q,r) != POSITIVE` (exact).
   double total_signed_area = 0.;        ///< Sum of the signed spherical areas (4 pi when bijective).
-  bool bijective = false;               ///< No flipped face and total area 4 pi.
+  bool bijective = false;               ///< No flipped face and a generic point covered once (exact predicates).
 
   Stage_statistics initial_guess;       ///< Stage 1: separator, two disks, Moebius, stereographic projection.
   Stage_statistics gauss_seidel;        ///< Stage 2: projected Gauss-Seidel while `Res` decreases.
@@ -48,12 +48,15 @@ struct Result {
   std::size_t initial_flipped_faces = 0;///< Non-positive spherical triangles of the initial guess.
   bool uniform_initial_guess_fallback = false; ///< The disks were embedded with uniform weights instead.
   bool admissible_weights = false;      ///< The weights were made symmetric and positive (named parameter `admissible_weights`).
-  std::size_t clamped_weights = 0;      ///< Edges whose weight `admissible_weights` raised to 1% of the local mean.
+  std::size_t raised_weights = 0;       ///< Edges whose weight `admissible_weights` raised to 1% of the local mean.
   std::size_t rejected_moves = 0;       ///< Vertex moves backtracked to preserve bijectivity.
   /// How far the continuation from Tutte's weights to the given ones got, in [0, 1] (1: all the way); -1 when it
   /// was not needed. Below 1, the balanced maps of the blended weights could not be followed further: with
   /// cotangent weights, typically because a triangle degenerates on the way.
   double continuation_parameter = -1.;
+  /// Cotangent or mean-value weights of degenerate geometry (a corner angle below 1e-6 rad or above pi - 1e-6,
+  /// zero-area faces, coincident vertices) that were bounded to stay finite: each counts once per direction.
+  std::size_t clamped_weights = 0;
 
   /// `true` when `status == Error_code::OK`.
   explicit operator bool() const { return status == Error_code::OK; }

@@ -81,7 +81,8 @@ inline Input_check check_mesh_arrays(const Mesh_arrays& mesh)
   for(const auto& p : mesh.polygons) {
     for(int i : p)
       if(i < 0 || static_cast<std::size_t>(i) >= nv)
-        return make_check(Error_code::DEGENERATE_FACE, "a face refers to vertex " + std::to_string(i) + ", which does not exist");
+        return make_check(Error_code::DEGENERATE_FACE, "a face refers to a vertex that does not exist (index " +
+                                                       (i < 0 ? std::string("out of range") : std::to_string(i)) + ")");
     if(p[0] == p[1] || p[1] == p[2] || p[2] == p[0]) ++repeated;
   }
   if(repeated > 0)
@@ -234,7 +235,11 @@ Input_check check_polygon_soup(const PointRange& points, const PolygonRange& pol
     mesh.points.emplace_back(CGAL::to_double(p.x()), CGAL::to_double(p.y()), CGAL::to_double(p.z()));
   for(const auto& polygon : polygons) {
     std::vector<int> face;
-    for(const auto i : polygon) face.push_back(static_cast<int>(i));
+    for(const auto i : polygon) {
+      // An index past the points (or past int) must not wrap around onto an existing vertex.
+      const long long index = static_cast<long long>(i);
+      face.push_back(index >= 0 && static_cast<unsigned long long>(index) < points.size() ? static_cast<int>(index) : -1);
+    }
     mesh.polygons.push_back(std::move(face));
   }
   return internal::check_mesh_arrays(mesh);

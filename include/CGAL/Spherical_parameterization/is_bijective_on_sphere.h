@@ -25,7 +25,7 @@ struct Sphere_map_certificate {
   std::size_t flipped_faces = 0;     ///< Faces whose spherical triangle is not positively oriented (exact predicate).
   double total_signed_area = 0.;     ///< Sum of the signed areas of the spherical triangles (4 pi for a bijection).
   bool valid_mesh = false;           ///< The mesh passes `check_input()` (closed, connected, manifold, oriented, genus 0).
-  bool bijective = false;            ///< A valid mesh, no flipped face and total area 4 pi.
+  bool bijective = false;            ///< A valid mesh, no flipped face, a generic point covered once (exact), area 4 pi.
 };
 
 namespace internal {
@@ -57,8 +57,10 @@ Mesh_arrays read_connectivity(const TriangleMesh& tm, const NamedParameters& np)
 /// Certifies a map `vsm` of the vertices of the closed triangle mesh `tm` to points on (or radially projected
 /// onto) the unit sphere: the mesh must pass `check_input()` (the argument below needs a closed, connected,
 /// oriented genus-0 surface), every spherical triangle must be positively oriented, `CGAL::orientation(ORIGIN, p, q, r)
-/// == POSITIVE` decided exactly, and the signed spherical areas must add up to 4 pi (with every triangle positive
-/// the total is 4 pi times the degree of the map, so this excludes multiple coverings).
+/// == POSITIVE` decided exactly, a generic point of the sphere must be covered by exactly one triangle, also decided
+/// exactly (with every triangle positive that count is the degree of the map, so this excludes multiple
+/// coverings), and the signed spherical areas must add up to 4 pi (within pi; a check of the count, with the
+/// ill-conditioned areas of nearly degenerate triangles evaluated exactly).
 ///
 /// \tparam TriangleMesh a model of `FaceListGraph`.
 /// \tparam VertexSphereMap a model of `ReadablePropertyMap` from vertices to points with `x()`, `y()`, `z()`.
@@ -90,18 +92,22 @@ Sphere_map_certificate certify_sphere_map(const TriangleMesh& tm, VertexSphereMa
     const double r = internal::length(x[i]);
     unit[i] = r > 0. ? x[i] * (1. / r) : x[i];
   }
-  const internal::Sphere_certificate raw = internal::certify(mesh.triangles, unit);
-  // The exact test runs on the user's coordinates, not on the normalized ones.
+  // The exact test runs on the user's coordinates, not on the normalized ones, and its verdict also gives the sign
+  // of each area: normalizing can move a triangle along a great circle across atan2's branch cut (the fuzzer).
   std::size_t flipped = 0;
+  double area = 0.;
   for(const auto& t : mesh.triangles) {
-    const internal::Vector3& a = x[static_cast<std::size_t>(t[0])];
-    const internal::Vector3& b = x[static_cast<std::size_t>(t[1])];
-    const internal::Vector3& c = x[static_cast<std::size_t>(t[2])];
-    if(!internal::is_finite(a) || !internal::is_finite(b) || !internal::is_finite(c) || !internal::is_positive(a, b, c)) ++flipped;
+    const std::size_t i = static_cast<std::size_t>(t[0]), j = static_cast<std::size_t>(t[1]), k = static_cast<std::size_t>(t[2]);
+    if(!internal::is_finite(x[i]) || !internal::is_finite(x[j]) || !internal::is_finite(x[k])) { ++flipped; continue; }
+    const bool positive = internal::is_positive(x[i], x[j], x[k]);
+    if(!positive) ++flipped;
+    area += internal::signed_spherical_area(unit[i], unit[j], unit[k], positive);
   }
   certificate.flipped_faces = flipped;
-  certificate.total_signed_area = raw.total_signed_area;
-  certificate.bijective = certificate.valid_mesh && flipped == 0 && std::abs(raw.total_signed_area - 4. * CGAL_PI) < CGAL_PI;
+  certificate.total_signed_area = area;
+  const double pi = 3.14159265358979323846;
+  certificate.bijective = certificate.valid_mesh && flipped == 0 && std::abs(area - 4. * pi) < pi &&
+                          internal::covering_number(mesh.triangles, x) == 1;
   return certificate;
 }
 

@@ -98,7 +98,7 @@ CGAL_SPHERICAL_PARAMETERIZATION_NAMED_PARAMETER(nonlinear_solver)
 /// `true`: solve with the closest weights the theory covers instead of the given ones: `w_ij` and `w_ji` replaced by
 /// their mean, then weights below 1% of the mean weight at their vertices raised to it (default `false`). Symmetric
 /// positive weights have a bijective balanced solution on every inscribable connectivity; cotangent weights (which
-/// may be negative) and mean-value weights (not symmetric) in general do not. `Result::clamped_weights` counts the
+/// may be negative) and mean-value weights (not symmetric) in general do not. `Result::raised_weights` counts the
 /// edges raised.
 CGAL_SPHERICAL_PARAMETERIZATION_NAMED_PARAMETER(admissible_weights)
 /// Seed of METIS' randomized separator (default 0): the same seed gives bitwise identical output.

@@ -308,7 +308,7 @@ Result run_pipeline(const Mesh_arrays& mesh, Sphere_system& system, const Pipeli
 ///     \cgalParamDefault{none} \cgalParamNEnd
 ///   \cgalParamNBegin{admissible_weights} \cgalParamDescription{solve with the closest symmetric positive weights
 ///     (`w_ij`, `w_ji` replaced by their mean, weights below 1% of the local mean raised to it), for which the theory
-///     guarantees a bijective solution on inscribable meshes; `Result::clamped_weights` counts the edges raised}
+///     guarantees a bijective solution on inscribable meshes; `Result::raised_weights` counts the edges raised}
 ///     \cgalParamType{`bool`} \cgalParamDefault{`false`} \cgalParamNEnd
 ///   \cgalParamNBegin{tolerance} \cgalParamDescription{stop when `Res` is below it}
 ///     \cgalParamType{`double`} \cgalParamDefault{`1e-6`} \cgalParamNEnd
@@ -455,10 +455,13 @@ Result spherical_parameterize(const TriangleMesh& tm, VertexSphereMap vsm,
     Result result;
     result.status = weight_status;
     result.message = std::string(get_error_message(weight_status)) + ": " + weight_message;
+    result.clamped_weights = system.clamped_weights;
+    result.number_of_vertices = mesh.points.size();
+    result.number_of_faces = mesh.polygons.size();
     return result;
   }
   const bool admissible = choose_parameter(get_parameter(np, internal_np::admissible_weights), false);
-  const std::size_t clamped_weights = admissible ? internal::make_weights_admissible(system) : 0;
+  const std::size_t raised_weights = admissible ? internal::make_weights_admissible(system) : 0;
   if(admissible) options.weighting = Weighting::USER_MAP;  // the disks use the same (admissible) weights
   options.admissible_weights = admissible;
 
@@ -469,7 +472,12 @@ Result spherical_parameterize(const TriangleMesh& tm, VertexSphereMap vsm,
   std::vector<internal::Vector3> x;
   Result result = internal::run_pipeline(mesh, system, options, solver, x);
   result.admissible_weights = admissible;
-  result.clamped_weights = clamped_weights;
+  result.raised_weights = raised_weights;
+  result.clamped_weights = system.clamped_weights;
+  if(system.clamped_weights > 0) {
+    result.message += " [" + std::to_string(system.clamped_weights) + " weights of degenerate corners were clamped]";
+    if(options.verbose) std::cerr << "weights: " << system.clamped_weights << " of degenerate corners clamped\n";
+  }
   if(x.size() == mesh.points.size()) {
     using Point = typename boost::property_traits<VertexSphereMap>::value_type;
     for(auto v : vertices(tm)) {

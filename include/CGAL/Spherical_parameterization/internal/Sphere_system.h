@@ -16,6 +16,7 @@
 #include <cstddef>
 #include <cstdint>
 #include <functional>
+#include <sstream>
 #include <string>
 #include <utility>
 #include <vector>
@@ -32,6 +33,7 @@ struct Sphere_system {
   std::vector<double> weights;             // normalized: each row sums to one
   std::vector<double> row_sums;             // raw weight of (i, j) = weights[k] * row_sums[i]
   bool symmetric = true;                   // raw weights satisfy w_ij = w_ji
+  std::size_t clamped_weights = 0;         // weights with a degenerate corner or edge, bounded (see out_of_bounds)
   std::vector<int> ring_faces;             // for the entry (i, j = ring[k]): the face (i, ring[k], ring[k+1])
   std::vector<std::array<int, 3>> triangles;
 
@@ -84,18 +86,45 @@ inline Sphere_system make_connectivity(const Mesh_arrays& mesh)
   return system;
 }
 
-inline double cotangent(const Vector3& a, const Vector3& b) // of the angle between a and b
+// Degenerate corners (zero-area faces, coincident vertices, needles) make cotangent and mean-value weights
+// infinite or NaN. Angles outside [minimum_corner_angle, pi - minimum_corner_angle] count as the nearest bound,
+// and edge lengths are bounded from below, so every weight stays finite; such weights are counted as clamped.
+// The bound leaves real needles (a CAD mesh's 0.0003 degree = 5e-6 rad slivers) untouched, and every other
+// corner gets exactly the usual formula.
+constexpr double minimum_corner_angle = 1e-6;
+
+// -1: the angle between a and b is below the bound (or undefined: a zero vector), 1: above pi minus the bound.
+inline int out_of_bounds(double sine_length, double cosine_length)
 {
-  return dot(a, b) / length(cross(a, b));
+  const double angle = std::atan2(sine_length, cosine_length);
+  if(!(angle >= minimum_corner_angle)) return -1;
+  return angle > 3.14159265358979323846 - minimum_corner_angle ? 1 : 0;
 }
 
-inline double tangent_of_half_angle(const Vector3& a, const Vector3& b)
+// Cotangent of the angle between a and b.
+inline double bounded_cotangent(const Vector3& a, const Vector3& b, bool& clamped)
 {
-  return length(cross(a, b)) / (length(a) * length(b) + dot(a, b));
+  const double s = length(cross(a, b)), c = dot(a, b);
+  const int side = out_of_bounds(s, c);
+  if(side == 0) return c / s;
+  clamped = true;
+  return -side / std::tan(minimum_corner_angle);
+}
+
+// Tangent of half the angle between a and b.
+inline double bounded_tangent_of_half_angle(const Vector3& a, const Vector3& b, bool& clamped)
+{
+  const double s = length(cross(a, b)), c = dot(a, b);
+  const int side = out_of_bounds(s, c);
+  if(side == 0) return s / (length(a) * length(b) + c);
+  clamped = true;
+  return side < 0 ? std::tan(0.5 * minimum_corner_angle) : 1. / std::tan(0.5 * minimum_corner_angle);
 }
 
 // Raw weight of neighbour j = ring[k] in the equation of vertex i, from the two faces (i, j, next), (i, prev, j).
-inline double geometric_weight(Weighting weighting, const std::vector<Vector3>& p, std::size_t i, int prev, int j, int next)
+// `minimum_length` bounds the edge length of mean-value weights from below.
+inline double geometric_weight(Weighting weighting, const std::vector<Vector3>& p, std::size_t i, int prev, int j, int next,
+                               double minimum_length, bool& clamped)
 {
   const Vector3& xi = p[i];
   const Vector3& xj = p[static_cast<std::size_t>(j)];
@@ -103,22 +132,36 @@ inline double geometric_weight(Weighting weighting, const std::vector<Vector3>& 
   const Vector3& xp = p[static_cast<std::size_t>(prev)];
   switch(weighting) {
     case Weighting::COTANGENT:
-      return 0.5 * (cotangent(xi - xn, xj - xn) + cotangent(xi - xp, xj - xp));
-    case Weighting::MEAN_VALUE:
-      return (tangent_of_half_angle(xj - xi, xn - xi) + tangent_of_half_angle(xp - xi, xj - xi)) / length(xj - xi);
+      return 0.5 * (bounded_cotangent(xi - xn, xj - xn, clamped) + bounded_cotangent(xi - xp, xj - xp, clamped));
+    case Weighting::MEAN_VALUE: {
+      double edge = length(xj - xi);
+      if(!(edge >= minimum_length)) { clamped = true; edge = minimum_length; }
+      return (bounded_tangent_of_half_angle(xj - xi, xn - xi, clamped) + bounded_tangent_of_half_angle(xp - xi, xj - xi, clamped)) / edge;
+    }
     default:
       return 1.;
   }
 }
 
-// Fills and normalizes the weights. `user_weight(i, j)` is used for Weighting::USER_MAP.
-// Returns OK, or INVALID_WEIGHTS with a message naming the first bad vertex.
+// Fills and normalizes the weights. `user_weight(i, j)` is used for Weighting::USER_MAP (never clamped: the
+// user's weights are taken as given). Returns OK, or INVALID_WEIGHTS with a message naming the first bad vertex
+// (a non-finite weight, or weights that do not sum to a positive value, e.g. cotangent weights around a vertex
+// whose obtuse corners outweigh the rest).
 inline Error_code assign_weights(Sphere_system& system, const Mesh_arrays& mesh, Weighting weighting,
                                  const std::function<double(std::size_t, int)>& user_weight, std::string& message)
 {
   const std::size_t n = system.number_of_vertices;
   system.weights.assign(system.neighbors.size(), 1.);
   system.row_sums.assign(n, 1.);
+  system.clamped_weights = 0;
+  // Edge lengths below 1e-12 of the bounding box diagonal (coincident vertices) count as that length.
+  Vector3 low = n > 0 ? mesh.points[0] : Vector3(), high = low;
+  for(const Vector3& q : mesh.points) {
+    low = Vector3(std::min(low.x, q.x), std::min(low.y, q.y), std::min(low.z, q.z));
+    high = Vector3(std::max(high.x, q.x), std::max(high.y, q.y), std::max(high.z, q.z));
+  }
+  const double diagonal = length(high - low);
+  const double minimum_length = diagonal > 0. && std::isfinite(diagonal) ? 1e-12 * diagonal : 1e-300;
   for(std::size_t i = 0; i < n; ++i) {
     const std::size_t begin = system.offsets[i], end = system.offsets[i + 1], d = end - begin;
     double sum = 0.;
@@ -126,8 +169,10 @@ inline Error_code assign_weights(Sphere_system& system, const Mesh_arrays& mesh,
       const int j = system.neighbors[k];
       const int next = system.neighbors[begin + (k - begin + 1) % d];
       const int prev = system.neighbors[begin + (k - begin + d - 1) % d];
+      bool clamped = false;
       const double w = weighting == Weighting::USER_MAP ? user_weight(i, j)
-                                                        : geometric_weight(weighting, mesh.points, i, prev, j, next);
+                                                        : geometric_weight(weighting, mesh.points, i, prev, j, next, minimum_length, clamped);
+      system.clamped_weights += clamped;
       if(!std::isfinite(w)) {
         message = "the weight of edge (" + std::to_string(i) + ", " + std::to_string(j) + ") is not finite (degenerate geometry?)";
         return Error_code::INVALID_WEIGHTS;
@@ -136,7 +181,9 @@ inline Error_code assign_weights(Sphere_system& system, const Mesh_arrays& mesh,
       sum += w;
     }
     if(!(sum > 0.) || !std::isfinite(1. / sum)) {
-      message = "the weights around vertex " + std::to_string(i) + " sum to " + std::to_string(sum);
+      std::ostringstream text;
+      text << "the weights around vertex " << i << " sum to " << sum << " (they must sum to a positive value)";
+      message = text.str();
       return Error_code::INVALID_WEIGHTS;
     }
     for(std::size_t k = begin; k < end; ++k) system.weights[k] /= sum;

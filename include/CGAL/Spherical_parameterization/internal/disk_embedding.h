@@ -133,7 +133,10 @@ bool embed_one_disk(const Mesh_arrays& mesh, const Sphere_system& system, const 
   Prescribed_border_parameterizer border_parameterizer(&border);
 
   SMP::Error_code status = SMP::ERROR_EMPTY_MESH;
-  switch(weighting) {
+  // Degenerate corners (clamped in the sphere system) would make CGAL's own cotangent and mean-value weights
+  // divide by zero, or fail its assertions: the disks then take the clamped weights of the sphere stage.
+  const Weighting disk_weighting = weighting != Weighting::UNIFORM && system.clamped_weights > 0 ? Weighting::USER_MAP : weighting;
+  switch(disk_weighting) {
     case Weighting::UNIFORM: {
       SMP::Barycentric_mapping_parameterizer_3<Half_mesh, Prescribed_border_parameterizer, SolverTraits> p(border_parameterizer, solver);
       status = p.parameterize(half, bhd, uvmap, vimap, vpmap);

@@ -6,6 +6,7 @@
 #include <CGAL/Spherical_parameterization/internal/Vector3.h>
 
 #include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
+#include <CGAL/Exact_rational.h>
 
 #include <array>
 #include <cmath>
@@ -31,17 +32,76 @@ inline bool is_positive(const Vector3& a, const Vector3& b, const Vector3& c)
   const double bound = 7.7715611723761027e-16 * permanent;  // (7 + 56 eps) eps, eps = 2^-53
   if(det > bound) return true;
   if(det < -bound) return false;
-  if(!std::isfinite(permanent)) return false;  // a non-finite coordinate: never positive
+  // A non-finite coordinate makes the permanent non-finite: never positive (the exact arithmetic cannot take it,
+  // and a backtracked move pulled through the centre of the sphere yields one).
+  if(!std::isfinite(permanent)) return false;
   using P = CGAL::Epick::Point_3;
   return CGAL::orientation(P(CGAL::ORIGIN), P(a.x, a.y, a.z), P(b.x, b.y, b.z), P(c.x, c.y, c.z)) == CGAL::POSITIVE;
 }
 
-// Signed area of the spherical triangle on the unit sphere (Van Oosterom and Strackee).
-inline double signed_spherical_area(const Vector3& a, const Vector3& b, const Vector3& c)
+// Signed area of the spherical triangle (a, b, c) on the unit sphere (Van Oosterom and Strackee):
+// 2 atan2(a . (b x c), 1 + a.b + b.c + c.a). When the triangle is nearly degenerate, both arguments are within
+// rounding of 0 (a vertex within rounding of another or of its antipode) and their rounded values would put the
+// area anywhere in (-2 pi, 2 pi) (found by the fuzzer); they are then evaluated exactly on the double coordinates,
+// so that the area is the one of the triangle the exact orientation test judged. `positive`: that test's
+// verdict, when known, used for the sign of the area.
+inline double signed_spherical_area(const Vector3& a, const Vector3& b, const Vector3& c, bool positive = false)
 {
-  const double numerator = determinant(a, b, c);
-  const double denominator = 1. + dot(a, b) + dot(b, c) + dot(c, a);
+  double numerator = determinant(a, b, c);
+  double denominator = 1. + dot(a, b) + dot(b, c) + dot(c, a);
+  const double numerator_scale = std::abs(a.x) * (std::abs(b.y * c.z) + std::abs(b.z * c.y)) +
+                                 std::abs(a.y) * (std::abs(b.z * c.x) + std::abs(b.x * c.z)) +
+                                 std::abs(a.z) * (std::abs(b.x * c.y) + std::abs(b.y * c.x));
+  const double denominator_scale = 1. + std::abs(a.x * b.x) + std::abs(a.y * b.y) + std::abs(a.z * b.z) +
+                                   std::abs(b.x * c.x) + std::abs(b.y * c.y) + std::abs(b.z * c.z) +
+                                   std::abs(c.x * a.x) + std::abs(c.y * a.y) + std::abs(c.z * a.z);
+  // A relative error of the arguments below about 1e-9 keeps the area's error below about 1e-9 as well.
+  const double ill_conditioned = 1e-7;
+  if(std::isfinite(numerator_scale + denominator_scale) &&
+     (std::abs(numerator) < ill_conditioned * numerator_scale || std::abs(denominator) < ill_conditioned * denominator_scale)) {
+    using Q = CGAL::Exact_rational;
+    const Q ax(a.x), ay(a.y), az(a.z), bx(b.x), by(b.y), bz(b.z), cx(c.x), cy(c.y), cz(c.z);
+    numerator = CGAL::to_double(ax * (by * cz - bz * cy) + ay * (bz * cx - bx * cz) + az * (bx * cy - by * cx));
+    denominator = CGAL::to_double(Q(1) + ax * bx + ay * by + az * bz + bx * cx + by * cy + bz * cz + cx * ax + cy * ay + cz * az);
+  }
+  if(positive) numerator = std::abs(numerator);
   return 2. * std::atan2(numerator, denominator);
+}
+
+// How many of the spherical triangles contain a generic point of the sphere, decided with exact predicates: with
+// every triangle positive this is the degree of the map. Areas cannot decide it when the map is degenerate:
+// triangles whose vertices are within rounding of two antipodal points (found by the fuzzer) have areas that
+// rounding sets anywhere in (0, 2 pi). Returns -1 if every candidate point lies on the boundary of a triangle.
+inline long covering_number(const std::vector<std::array<int, 3>>& triangles, const std::vector<Vector3>& x)
+{
+  using P = CGAL::Epick::Point_3;
+  const P origin(CGAL::ORIGIN);
+  // Points with no structure, so that no mesh lies along them by accident; the next one is tried on a boundary.
+  const P candidates[] = {P(0.3141592653589793, 0.5772156649015329, 0.7539022543433046),
+                          P(-0.6180339887498949, 0.2718281828459045, -0.4142135623730950),
+                          P(0.1234567890123456, -0.8765432109876543, 0.3456789012345678),
+                          P(-0.2236067977499790, -0.1732050807568877, -0.9486832980505138)};
+  for(const P& p : candidates) {
+    long count = 0;
+    bool on_boundary = false;
+    for(const auto& t : triangles) {
+      const Vector3& a = x[static_cast<std::size_t>(t[0])];
+      const Vector3& b = x[static_cast<std::size_t>(t[1])];
+      const Vector3& c = x[static_cast<std::size_t>(t[2])];
+      if(!is_finite(a) || !is_finite(b) || !is_finite(c)) continue;
+      const P pa(a.x, a.y, a.z), pb(b.x, b.y, b.z), pc(c.x, c.y, c.z);
+      const CGAL::Orientation o1 = CGAL::orientation(origin, pa, pb, p);
+      if(o1 == CGAL::NEGATIVE) continue;
+      const CGAL::Orientation o2 = CGAL::orientation(origin, pb, pc, p);
+      if(o2 == CGAL::NEGATIVE) continue;
+      const CGAL::Orientation o3 = CGAL::orientation(origin, pc, pa, p);
+      if(o3 == CGAL::NEGATIVE) continue;
+      if(o1 == CGAL::ZERO || o2 == CGAL::ZERO || o3 == CGAL::ZERO) { on_boundary = true; break; }
+      ++count;
+    }
+    if(!on_boundary) return count;
+  }
+  return -1;
 }
 
 struct Sphere_certificate {
@@ -50,8 +110,11 @@ struct Sphere_certificate {
   bool bijective = false;
 };
 
-// Bijective iff every triangle is positive and the areas add up to 4 pi. With all triangles positive the total
-// is 4 pi times the degree of the map, so a tolerance of pi separates degree 1 from any other degree.
+// Bijective iff every triangle is positive and a generic point is covered exactly once: an orientation-preserving
+// map of a sphere onto the sphere is a branched covering, and degree 1 leaves no room for branch points or
+// multiple coverings. Both are decided by exact predicates. The total area must be 4 pi as well (within pi: with
+// every triangle positive it is 4 pi times the degree); with the ill-conditioned areas evaluated exactly, the two
+// tests agree on every map, and the area stays as a check of the check.
 inline Sphere_certificate certify(const std::vector<std::array<int, 3>>& triangles, const std::vector<Vector3>& x)
 {
   Sphere_certificate certificate;
@@ -60,11 +123,13 @@ inline Sphere_certificate certify(const std::vector<std::array<int, 3>>& triangl
     const Vector3& b = x[static_cast<std::size_t>(t[1])];
     const Vector3& c = x[static_cast<std::size_t>(t[2])];
     if(!is_finite(a) || !is_finite(b) || !is_finite(c)) { ++certificate.flipped_faces; continue; }
-    if(!is_positive(a, b, c)) ++certificate.flipped_faces;
-    certificate.total_signed_area += signed_spherical_area(a, b, c);
+    const bool positive = is_positive(a, b, c);
+    if(!positive) ++certificate.flipped_faces;
+    certificate.total_signed_area += signed_spherical_area(a, b, c, positive);
   }
-  const double four_pi = 4. * 3.14159265358979323846;
-  certificate.bijective = certificate.flipped_faces == 0 && std::abs(certificate.total_signed_area - four_pi) < 3.14159265358979323846;
+  const double pi = 3.14159265358979323846;
+  certificate.bijective = certificate.flipped_faces == 0 && std::abs(certificate.total_signed_area - 4. * pi) < pi &&
+                          covering_number(triangles, x) == 1;
   return certificate;
 }
 

@@ -1,0 +1,52 @@
+#!/usr/bin/env python3
+"""Summarizes the CSV of benchmark_spherical_parameterization: a Markdown table, the speed-up of the default
+(global) solver over the paper's local Newton, and the exponent of time against faces (least squares in log-log)."""
+import csv
+import math
+import sys
+
+rows = list(csv.DictReader(open(sys.argv[1])))
+if not rows:
+    sys.exit("no results in " + sys.argv[1])
+
+print("| mesh | faces | weights | solver | status | stage 1 (s) | stage 2 (s) | stage 3 (s) | total (s) | Res | max tangential | flips | peak MB | KB/face |")
+print("|---|---:|---|---|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|")
+for r in rows:
+    faces = int(r["faces"])
+    print("| %s | %d | %s | %s | %s | %.3f | %.3f | %.3f | %.3f | %.2e | %.2e | %s | %.0f | %.2f |" % (
+        r["mesh"], faces, r["weights"], r["solver"], r["status"], float(r["initial_s"]), float(r["gauss_seidel_s"]),
+        float(r["newton_s"]), float(r["total_s"]), float(r["res"]), float(r["max_tangential"]), r["flips"],
+        float(r["peak_mb"]), float(r["peak_mb"]) * 1024. / faces))
+
+glob = {(r["mesh"], r["weights"]): r for r in rows if r["solver"] == "global"}
+local = [r for r in rows if r["solver"] == "local"]
+if local:
+    print("\nSpeed-up of the default solver (global Newton) over the paper's local Newton, same run:\n")
+    print("| mesh | faces | local (s) | local status | global (s) | global status | speed-up |")
+    print("|---|---:|---:|---|---:|---|---:|")
+    for r in local:
+        g = glob.get((r["mesh"], r["weights"]))
+        if g is None:
+            continue
+        ratio = float(r["total_s"]) / float(g["total_s"])
+        bound = ">= " if r["status"] != "OK" else ""  # the local solver stopped at its budget: a lower bound
+        print("| %s | %s | %.3f | %s | %.3f | %s | %s%.1f |" % (r["mesh"], r["faces"], float(r["total_s"]), r["status"],
+                                                           float(g["total_s"]), g["status"], bound, ratio))
+
+ok = [r for r in rows if r["solver"] == "global" and r["weights"] == "uniform" and r["status"] == "OK"]
+if len(ok) >= 2:
+    xs = [math.log(int(r["faces"])) for r in ok]
+    ys = [math.log(float(r["total_s"])) for r in ok]
+    n = len(xs)
+    mx, my = sum(xs) / n, sum(ys) / n
+    slope = sum((x - mx) * (y - my) for x, y in zip(xs, ys)) / sum((x - mx) ** 2 for x in xs)
+    print("\nTime against faces (uniform weights, default solver, %d meshes from %d to %d faces): "
+          "total seconds ~ faces^%.2f" % (n, min(int(r["faces"]) for r in ok), max(int(r["faces"]) for r in ok), slope))
+    big = [r for r in ok if int(r["faces"]) >= 100000]
+    if len(big) >= 2:
+        xs = [math.log(int(r["faces"])) for r in big]
+        ys = [math.log(float(r["total_s"])) for r in big]
+        n = len(xs)
+        mx, my = sum(xs) / n, sum(ys) / n
+        slope = sum((x - mx) * (y - my) for x, y in zip(xs, ys)) / sum((x - mx) ** 2 for x in xs)
+        print("The same on the %d meshes of 100k faces or more: faces^%.2f" % (n, slope))

@@ -1,0 +1,60 @@
+#!/usr/bin/env bash
+# The benchmark (the paper's Table 1, and beyond): set up and build, make the large meshes, run every mesh in its
+# own process (so that the peak memory is the mesh's own), write a CSV, then print the table, the speed-up over the
+# paper's local Newton and the fitted exponent of time against faces.
+#
+# Usage: scripts/run_benchmark.sh [--runs N] [--no-large] [--no-local] [--local-budget SECONDS]
+#   --runs N            runs per configuration, the median is reported (default 3)
+#   --no-large          leave out the Loop subdivisions of armadillo (about 0.8M and 3.3M faces)
+#   --no-local          leave out the paper's local Newton (the reference the speed-up is measured against)
+#   --local-budget S    time budget of the local Newton's iterations per run (default 300 s)
+# Results: ${BUILD_DIR:-build}/benchmark_results/benchmark.csv and table.md. Never run by the tests.
+set -euo pipefail
+cd "$(dirname "$0")/.."
+runs=3; large=1; local_solver=1; local_budget=300
+while [ $# -gt 0 ]; do
+  case "$1" in
+    --runs) runs="$2"; shift 2 ;;
+    --no-large) large=0; shift ;;
+    --no-local) local_solver=0; shift ;;
+    --local-budget) local_budget="$2"; shift 2 ;;
+    *) echo "unknown option $1 (see the top of $0)" >&2; exit 4 ;;
+  esac
+done
+
+scripts/setup.sh benchmark_spherical_parameterization make_subdivided_mesh
+build="${BUILD_DIR:-build}"
+tools="$build/benchmark/Spherical_parameterization"
+cgal="$build/cgal_data/data/meshes"
+data="$build/benchmark_data"
+out="$build/benchmark_results"
+mkdir -p "$data" "$out"
+csv="$out/benchmark.csv"
+rm -f "$csv"
+
+# The large meshes: Loop subdivision of CGAL's armadillo (about 52k faces), made once and kept in the build folder.
+if [ "$large" = 1 ]; then
+  for level in 2 3; do
+    mesh="$data/armadillo_loop$level.off"
+    [ -s "$mesh" ] || "$tools/make_subdivided_mesh" "$cgal/armadillo.off" "$level" "$mesh"
+  done
+fi
+
+meshes=("$cgal/triceratops.off" "$cgal/bunny00.off" "$cgal/armadillo.off")
+for m in ../shared/meshes/*.off; do meshes+=("$m"); done
+[ "$large" = 1 ] && meshes+=("$data/armadillo_loop2.off" "$data/armadillo_loop3.off")
+
+echo "== machine: $(nproc) cores, $(grep -m1 'model name' /proc/cpuinfo | cut -d: -f2- | sed 's/^ *//')"
+echo "== $runs runs per configuration, the median; one process per mesh and solver"
+for m in "${meshes[@]}"; do
+  "$tools/benchmark_spherical_parameterization" --runs "$runs" --solvers global --csv "$csv" "$m" | tail -n 1
+  # The paper's local Newton, the reference of the speed-up, on the meshes up to 300k faces.
+  if [ "$local_solver" = 1 ]; then
+    faces=$(awk 'NR==1 && $1=="OFF" && NF>=3 {print $3; exit} NR==1 && $1=="OFF" {getline; print $2; exit}' "$m")
+    if [ -n "$faces" ] && [ "$faces" -le 300000 ]; then
+      "$tools/benchmark_spherical_parameterization" --runs "$runs" --solvers local --max-seconds "$local_budget" \
+        --csv "$csv" "$m" | tail -n 1
+    fi
+  fi
+done
+python3 benchmark/Spherical_parameterization/summarize_benchmark.py "$csv" | tee "$out/table.md"
