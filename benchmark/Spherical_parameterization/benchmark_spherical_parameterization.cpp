@@ -1,7 +1,8 @@
 // The whole pipeline on a list of meshes, printed as a table in the style of the paper's Table 1 (and as CSV).
 //
 //   benchmark_spherical_parameterization [--runs N] [--weights uniform,mean_value,cotangent]
-//                                        [--solvers global,local] [--max-seconds S] [--sequential] [--csv FILE] MESH...
+//                                        [--solvers global,local] [--tolerance T] [--max-seconds S] [--sequential]
+//                                        [--csv FILE] MESH...
 // CGAL::Parallel_if_available_tag by default (the two disks of stage 1 at the same time when TBB is there);
 // --sequential uses CGAL::Sequential_tag.
 //
@@ -57,7 +58,7 @@ SP::Weighting weighting_of(const std::string& name)
 int main(int argc, char** argv)
 {
   int runs = 3;
-  double max_seconds = 600.;
+  double max_seconds = 600., tolerance = 1e-6;
   std::vector<std::string> weights = {"uniform"}, solvers = {"global"}, meshes;
   std::string csv_path;
   bool sequential = false;
@@ -67,6 +68,7 @@ int main(int argc, char** argv)
     else if(arg == "--weights" && a + 1 < argc) weights = split(argv[++a]);
     else if(arg == "--solvers" && a + 1 < argc) solvers = split(argv[++a]);
     else if(arg == "--max-seconds" && a + 1 < argc) max_seconds = std::atof(argv[++a]);
+    else if(arg == "--tolerance" && a + 1 < argc) tolerance = std::atof(argv[++a]);
     else if(arg == "--csv" && a + 1 < argc) csv_path = argv[++a];
     else if(arg == "--sequential") sequential = true;
     else meshes.push_back(arg);
@@ -79,7 +81,7 @@ int main(int argc, char** argv)
     const bool exists = std::ifstream(csv_path).good();
     csv.open(csv_path, std::ios::app);
     if(!exists)
-      csv << "mesh,faces,weights,solver,status,initial_s,gauss_seidel_s,newton_s,total_s,gs_sweeps,newton_steps,res,max_tangential,flips,peak_mb,runs\n";
+      csv << "mesh,faces,weights,solver,tolerance,status,initial_s,gauss_seidel_s,newton_s,total_s,gs_sweeps,newton_steps,res,max_tangential,flips,peak_mb,runs\n";
   }
   std::printf("%-28s %9s %-10s %-6s %-14s %8s %8s %8s %8s %10s %10s %6s %8s\n", "mesh", "faces", "weights", "solver",
               "status", "init s", "gs s", "newton s", "total s", "Res", "max tang", "flips", "peak MB");
@@ -94,7 +96,7 @@ int main(int argc, char** argv)
         std::vector<SP::Result> results;
         for(int r = 0; r < runs; ++r) {
           const auto parameters = SP::parameters::combine(
-              SP::parameters::weighting(weighting_of(w)), SP::parameters::max_seconds(max_seconds),
+              SP::parameters::weighting(weighting_of(w)), SP::parameters::max_seconds(max_seconds), SP::parameters::tolerance(tolerance),
               SP::parameters::nonlinear_solver(s == "local" ? SP::Nonlinear_solver::LOCAL_NEWTON : SP::Nonlinear_solver::GLOBAL_NEWTON));
           results.push_back(sequential ? SP::spherical_parameterize<CGAL::Sequential_tag>(mesh, sphere, parameters)
                                        : SP::spherical_parameterize<CGAL::Parallel_if_available_tag>(mesh, sphere, parameters));
@@ -109,7 +111,7 @@ int main(int argc, char** argv)
                     m.flipped_faces, peak);
         std::fflush(stdout);
         if(csv.is_open())
-          csv << name << ',' << m.number_of_faces << ',' << w << ',' << s << ',' << SP::get_error_name(m.status) << ','
+          csv << name << ',' << m.number_of_faces << ',' << w << ',' << s << ',' << tolerance << ',' << SP::get_error_name(m.status) << ','
               << m.initial_guess.seconds << ',' << m.gauss_seidel.seconds << ',' << m.newton.seconds << ',' << m.total_seconds
               << ',' << m.gauss_seidel.iterations << ',' << m.newton.iterations << ',' << m.residual << ','
               << m.max_tangential_residual << ',' << m.flipped_faces << ',' << peak << ',' << runs << '\n';

@@ -55,10 +55,11 @@ inline double signed_spherical_area(const Vector3& a, const Vector3& b, const Ve
   const double denominator_scale = 1. + std::abs(a.x * b.x) + std::abs(a.y * b.y) + std::abs(a.z * b.z) +
                                    std::abs(b.x * c.x) + std::abs(b.y * c.y) + std::abs(b.z * c.z) +
                                    std::abs(c.x * a.x) + std::abs(c.y * a.y) + std::abs(c.z * a.z);
-  // A relative error of the arguments below about 1e-9 keeps the area's error below about 1e-9 as well.
-  const double ill_conditioned = 1e-7;
-  if(std::isfinite(numerator_scale + denominator_scale) &&
-     (std::abs(numerator) < ill_conditioned * numerator_scale || std::abs(denominator) < ill_conditioned * denominator_scale)) {
+  // The angle atan2(numerator, denominator) is off by about (rounding error of the arguments) / |(numerator,
+  // denominator)|: about 1e-15 on a small or ordinary triangle (the denominator is near 4), ill-conditioned only
+  // when both arguments are near 0. Below 1e-8 of accuracy per triangle, they are evaluated exactly (rarely).
+  const double rounding = 8e-16 * (numerator_scale + denominator_scale);
+  if(std::isfinite(rounding) && std::abs(numerator) + std::abs(denominator) < 1e8 * rounding) {
     using Q = CGAL::Exact_rational;
     const Q ax(a.x), ay(a.y), az(a.z), bx(b.x), by(b.y), bz(b.z), cx(c.x), cy(c.y), cz(c.z);
     numerator = CGAL::to_double(ax * (by * cz - bz * cy) + ay * (bz * cx - bx * cz) + az * (bx * cy - by * cx));
