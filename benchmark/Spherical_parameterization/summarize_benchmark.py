@@ -38,19 +38,18 @@ if local:
 # From 5k faces up: below, fixed costs (reading the options, METIS' set-up) blur the slope.
 ok = [r for r in rows if r["solver"] == "global" and r["weights"] == "uniform" and r["status"] == "OK"
       and float(r.get("tolerance", "1e-06")) == 1e-6 and int(r["faces"]) >= 5000]
+def slope(rows):
+    """Least-squares slope of log(total seconds) against log(faces)."""
+    xs = [math.log(int(r["faces"])) for r in rows]
+    ys = [math.log(float(r["total_s"])) for r in rows]
+    mx, my = sum(xs) / len(xs), sum(ys) / len(ys)
+    return sum((x - mx) * (y - my) for x, y in zip(xs, ys)) / sum((x - mx) ** 2 for x in xs)
+
+
 if len(ok) >= 2:
-    xs = [math.log(int(r["faces"])) for r in ok]
-    ys = [math.log(float(r["total_s"])) for r in ok]
-    n = len(xs)
-    mx, my = sum(xs) / n, sum(ys) / n
-    slope = sum((x - mx) * (y - my) for x, y in zip(xs, ys)) / sum((x - mx) ** 2 for x in xs)
     print("\nTime against faces (uniform weights, default solver, %d meshes from %d to %d faces): "
-          "total seconds ~ faces^%.2f" % (n, min(int(r["faces"]) for r in ok), max(int(r["faces"]) for r in ok), slope))
+          "total seconds ~ faces^%.2f" % (len(ok), min(int(r["faces"]) for r in ok), max(int(r["faces"]) for r in ok),
+                                          slope(ok)))
     big = [r for r in ok if int(r["faces"]) >= 100000]
     if len(big) >= 2:
-        xs = [math.log(int(r["faces"])) for r in big]
-        ys = [math.log(float(r["total_s"])) for r in big]
-        n = len(xs)
-        mx, my = sum(xs) / n, sum(ys) / n
-        slope = sum((x - mx) * (y - my) for x, y in zip(xs, ys)) / sum((x - mx) ** 2 for x in xs)
-        print("The same on the %d meshes of 100k faces or more: faces^%.2f" % (n, slope))
+        print("The same on the %d meshes of 100k faces or more: faces^%.2f" % (len(big), slope(big)))
