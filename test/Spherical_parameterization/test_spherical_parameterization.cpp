@@ -10,6 +10,7 @@
 #include <CGAL/IO/polygon_soup_io.h>
 #include <CGAL/Polygon_mesh_processing/IO/polygon_mesh_io.h>
 #include <CGAL/Polyhedron_3.h>
+#include <CGAL/Subdivision_method_3/subdivision_methods_3.h>
 #include <CGAL/Surface_mesh.h>
 #include <CGAL/boost/graph/generators.h>
 
@@ -147,7 +148,7 @@ void expect_two_disks(const SPI::Sphere_system& system, const SPI::Two_disk_part
 {
   ASSERT_TRUE(partition.valid) << name;
   const auto& triangles = system.triangles;
-  const std::vector<int> opposite = SPI::face_adjacency(triangles);
+  const std::vector<int> opposite = SPI::face_adjacency(system);
   std::set<std::pair<int, int>> loop_edges;
   const std::size_t m = partition.loop.size();
   ASSERT_GE(m, 3u) << name;
@@ -899,6 +900,61 @@ TEST(SphericalParameterize, NamedParametersAndUserWeights)
   auto bad = m.add_property_map<Mesh::Halfedge_index, double>("h:bad", 1.).first;
   bad[*m.halfedges().begin()] = -std::numeric_limits<double>::infinity();
   EXPECT_EQ(SP::spherical_parameterize(m, a, SP::parameters::halfedge_weight_map(bad)).status, SP::Error_code::INVALID_WEIGHTS);
+}
+
+// The package renumbers the vertices of large meshes internally (renumber_for_locality): the output, the user's
+// weights and the input's order must not notice. Armadillo after one Loop subdivision has 104,002 vertices.
+TEST(SphericalParameterize, InternalRenumberingIsInvisible)
+{
+  Mesh m = read_mesh(cgal_data + "/armadillo.off");
+  CGAL::Subdivision_method_3::Loop_subdivision(m, CGAL::parameters::number_of_iterations(1));
+  ASSERT_GE(m.number_of_vertices(), SPI::renumbering_minimum_vertices);
+  const std::vector<Mesh::Vertex_index> vertices(m.vertices().begin(), m.vertices().end());
+  std::vector<std::size_t> order(vertices.size());
+  for(std::size_t i = 0; i < order.size(); ++i) order[i] = i;
+  std::mt19937 random(7);
+  std::shuffle(order.begin(), order.end(), random);
+  // The same surface, its vertices and faces in a shuffled order.
+  Mesh shuffled;
+  std::vector<Mesh::Vertex_index> copy_of(vertices.size());
+  for(std::size_t k : order) copy_of[k] = shuffled.add_vertex(m.point(vertices[k]));
+  std::vector<Mesh::Face_index> faces(m.faces().begin(), m.faces().end());
+  std::shuffle(faces.begin(), faces.end(), random);
+  for(Mesh::Face_index f : faces) {
+    std::vector<Mesh::Vertex_index> corners;
+    for(Mesh::Vertex_index v : vertices_around_face(m.halfedge(f), m)) corners.push_back(copy_of[std::size_t(v)]);
+    ASSERT_NE(shuffled.add_face(corners), Mesh::null_face());
+  }
+  auto sphere = shuffled.add_property_map<Mesh::Vertex_index, Point>("v:sphere").first;
+  const SP::Result shuffled_result = SP::spherical_parameterize(shuffled, sphere);
+  ASSERT_TRUE(shuffled_result) << shuffled_result.message;
+  // Carried back vertex by vertex, the map is a certified bijective map of the original mesh.
+  auto back = m.add_property_map<Mesh::Vertex_index, Point>("v:back").first;
+  for(std::size_t i = 0; i < vertices.size(); ++i) back[vertices[i]] = sphere[copy_of[i]];
+  EXPECT_TRUE(SP::is_bijective_on_sphere(m, back));
+
+  // Symmetric weights that change from vertex to vertex reach the right edges: the output balances exactly them.
+  auto weight = m.add_property_map<Mesh::Halfedge_index, double>("h:w").first;
+  for(Mesh::Halfedge_index h : m.halfedges())
+    weight[h] = 1. + 0.25 * double(std::size_t(m.target(h)) % 5 + std::size_t(m.source(h)) % 5);
+  auto balanced = m.add_property_map<Mesh::Vertex_index, Point>("v:balanced").first;
+  const SP::Result weighted = SP::spherical_parameterize(m, balanced, SP::parameters::halfedge_weight_map(weight));
+  ASSERT_TRUE(weighted) << weighted.message;
+  double sum_of_squares = 0.;
+  for(Mesh::Vertex_index v : m.vertices()) {
+    const Kernel::Vector_3 xi = balanced[v] - CGAL::ORIGIN;
+    Kernel::Vector_3 pull(0, 0, 0);
+    double total = 0.;
+    for(Mesh::Halfedge_index h : halfedges_around_target(m.halfedge(v), m)) {
+      pull = pull + weight[h] * (balanced[m.source(h)] - balanced[v]);
+      total += weight[h];
+    }
+    pull = pull / total;
+    const Kernel::Vector_3 tangential = pull - (pull * xi) * xi;
+    sum_of_squares += tangential.squared_length();
+  }
+  EXPECT_LT(std::sqrt(sum_of_squares) / double(m.number_of_vertices()), 1e-6);
+  EXPECT_NEAR(std::sqrt(sum_of_squares) / double(m.number_of_vertices()), weighted.residual, 1e-9);
 }
 
 // ---------------------------------------------------------------------------------------------------------------

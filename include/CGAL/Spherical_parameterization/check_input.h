@@ -33,7 +33,13 @@ namespace internal {
 
 class Union_find {
 public:
-  explicit Union_find(std::size_t n) : parent_(n) { std::iota(parent_.begin(), parent_.end(), std::size_t(0)); }
+  explicit Union_find(std::size_t n) { reset(n); }
+  // n singletons again, reusing the storage.
+  void reset(std::size_t n)
+  {
+    parent_.resize(n);
+    std::iota(parent_.begin(), parent_.end(), std::size_t(0));
+  }
   std::size_t find(std::size_t i)
   {
     while(parent_[i] != i) { parent_[i] = parent_[parent_[i]]; i = parent_[i]; }
@@ -88,41 +94,53 @@ inline Input_check check_mesh_arrays(const Mesh_arrays& mesh)
   if(repeated > 0)
     return make_check(Error_code::DEGENERATE_FACE, std::to_string(repeated) + " faces repeat a vertex");
 
-  // Undirected edges with the direction in which each face uses them.
-  struct Edge_use { std::uint64_t key; int forward; int face; };
-  std::vector<Edge_use> uses;
-  uses.reserve(3 * nf);
+  // Undirected edges with the direction in which each face uses them, bucketed by their smaller vertex (a
+  // counting sort: sorting all 3 nf uses at once took most of the time of these checks on large meshes).
+  struct Edge_use { int other; int face; bool forward; };
+  std::vector<std::size_t> bucket(nv + 1, 0);
   for(std::size_t f = 0; f < nf; ++f) {
     const auto& p = mesh.polygons[f];
-    for(int k = 0; k < 3; ++k) {
-      const std::uint64_t a = static_cast<std::uint64_t>(p[k]), b = static_cast<std::uint64_t>(p[(k + 1) % 3]);
-      uses.push_back({std::min(a, b) << 32 | std::max(a, b), a < b ? 1 : 0, static_cast<int>(f)});
+    for(int k = 0; k < 3; ++k) ++bucket[static_cast<std::size_t>(std::min(p[k], p[(k + 1) % 3])) + 1];
+  }
+  std::partial_sum(bucket.begin(), bucket.end(), bucket.begin());
+  std::vector<Edge_use> uses(3 * nf);
+  {
+    std::vector<std::size_t> fill(bucket.begin(), bucket.end() - 1);
+    for(std::size_t f = 0; f < nf; ++f) {
+      const auto& p = mesh.polygons[f];
+      for(int k = 0; k < 3; ++k) {
+        const int a = p[k], b = p[(k + 1) % 3];
+        uses[fill[static_cast<std::size_t>(std::min(a, b))]++] = {std::max(a, b), static_cast<int>(f), a < b};
+      }
     }
   }
-  std::sort(uses.begin(), uses.end(), [](const Edge_use& l, const Edge_use& r) {
-    return l.key < r.key || (l.key == r.key && l.face < r.face);
-  });
 
   std::size_t number_of_edges = 0, border_edges = 0, non_manifold_edges = 0, misoriented_edges = 0;
   Union_find border_loops(nv);
   std::vector<char> on_border(nv, 0);
-  for(std::size_t i = 0; i < uses.size();) {
-    std::size_t j = i;
-    while(j < uses.size() && uses[j].key == uses[i].key) ++j;
-    ++number_of_edges;
-    const std::size_t count = j - i;
-    if(count == 1) {
-      ++border_edges;
-      const std::size_t a = static_cast<std::size_t>(uses[i].key >> 32), b = static_cast<std::size_t>(uses[i].key & 0xffffffffu);
-      border_loops.unite(a, b);
-      on_border[a] = on_border[b] = 1;
-    } else if(count > 2) {
-      ++non_manifold_edges;
-    } else if(uses[i].forward == uses[i + 1].forward) {
-      ++misoriented_edges;
+  for(std::size_t a = 0; a < nv; ++a) {
+    const auto first = uses.begin() + static_cast<std::ptrdiff_t>(bucket[a]);
+    const auto last = uses.begin() + static_cast<std::ptrdiff_t>(bucket[a + 1]);
+    std::sort(first, last, [](const Edge_use& l, const Edge_use& r) { return l.other < r.other || (l.other == r.other && l.face < r.face); });
+    for(auto i = first; i != last;) {
+      auto j = i;
+      while(j != last && j->other == i->other) ++j;
+      ++number_of_edges;
+      const auto count = j - i;
+      if(count == 1) {
+        ++border_edges;
+        const std::size_t b = static_cast<std::size_t>(i->other);
+        border_loops.unite(a, b);
+        on_border[a] = on_border[b] = 1;
+      } else if(count > 2) {
+        ++non_manifold_edges;
+      } else if(i->forward == (i + 1)->forward) {
+        ++misoriented_edges;
+      }
+      i = j;
     }
-    i = j;
   }
+  std::vector<Edge_use>().swap(uses);
 
   if(non_manifold_edges > 0)
     return make_check(Error_code::NON_MANIFOLD_EDGE, std::to_string(non_manifold_edges) + " edges are shared by more than two faces");
@@ -150,12 +168,13 @@ inline Input_check check_mesh_arrays(const Mesh_arrays& mesh)
   }
   std::size_t pinched = 0;
   std::vector<int> local;
+  Union_find ring(0);
   for(std::size_t v = 0; v < nv; ++v) {
     local.clear();
     for(std::size_t k = offsets[v]; k < offsets[v + 1]; ++k) { local.push_back(link[k].first); local.push_back(link[k].second); }
     std::sort(local.begin(), local.end());
     local.erase(std::unique(local.begin(), local.end()), local.end());
-    Union_find ring(local.size());
+    ring.reset(local.size());
     std::size_t components = local.size();
     for(std::size_t k = offsets[v]; k < offsets[v + 1]; ++k) {
       const std::size_t a = static_cast<std::size_t>(std::lower_bound(local.begin(), local.end(), link[k].first) - local.begin());

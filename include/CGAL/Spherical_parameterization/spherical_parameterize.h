@@ -367,7 +367,7 @@ Result spherical_parameterize(const TriangleMesh& tm, VertexSphereMap vsm,
   const auto compute_x = gt.compute_x_3_object();
   const auto compute_y = gt.compute_y_3_object();
   const auto compute_z = gt.compute_z_3_object();
-  const internal::Mesh_arrays mesh = internal::read_face_graph(tm, vpm, vim, [&](const auto& p, double& x, double& y, double& z) {
+  internal::Mesh_arrays mesh = internal::read_face_graph(tm, vpm, vim, [&](const auto& p, double& x, double& y, double& z) {
     x = CGAL::to_double(compute_x(p));
     y = CGAL::to_double(compute_y(p));
     z = CGAL::to_double(compute_z(p));
@@ -381,6 +381,7 @@ Result spherical_parameterize(const TriangleMesh& tm, VertexSphereMap vsm,
     result.number_of_faces = mesh.polygons.size();
     return result;
   }
+  internal::renumber_for_locality(mesh);
 
   constexpr bool has_user_weights = !is_default_parameter<NamedParameters, internal_np::halfedge_weight_map_t>::value;
   internal::Pipeline_options options;
@@ -438,8 +439,9 @@ Result spherical_parameterize(const TriangleMesh& tm, VertexSphereMap vsm,
       user_table.emplace_back(i << 32 | j, static_cast<double>(get(weight_map, h)));
     }
     std::sort(user_table.begin(), user_table.end());
-    user_weight = [&user_table](std::size_t i, int j) {
-      const std::uint64_t key = static_cast<std::uint64_t>(i) << 32 | static_cast<std::uint64_t>(j);
+    user_weight = [&user_table, &mesh](std::size_t i, int j) {
+      const std::uint64_t key = static_cast<std::uint64_t>(internal::input_vertex_index(mesh, i)) << 32
+                                | static_cast<std::uint64_t>(internal::input_vertex_index(mesh, static_cast<std::size_t>(j)));
       auto it = std::lower_bound(user_table.begin(), user_table.end(), key,
                                  [](const std::pair<std::uint64_t, double>& entry, std::uint64_t k) { return entry.first < k; });
       return it != user_table.end() && it->first == key ? it->second : 0.;
@@ -480,8 +482,10 @@ Result spherical_parameterize(const TriangleMesh& tm, VertexSphereMap vsm,
   }
   if(x.size() == mesh.points.size()) {
     using Point = typename boost::property_traits<VertexSphereMap>::value_type;
+    std::vector<std::size_t> internal_index(x.size());
+    for(std::size_t i = 0; i < x.size(); ++i) internal_index[internal::input_vertex_index(mesh, i)] = i;
     for(auto v : vertices(tm)) {
-      const internal::Vector3& p = x[static_cast<std::size_t>(get(vim, v))];
+      const internal::Vector3& p = x[internal_index[static_cast<std::size_t>(get(vim, v))]];
       put(vsm, v, Point(p.x, p.y, p.z));
     }
   }

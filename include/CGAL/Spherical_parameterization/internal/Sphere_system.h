@@ -174,7 +174,8 @@ inline Error_code assign_weights(Sphere_system& system, const Mesh_arrays& mesh,
                                                         : geometric_weight(weighting, mesh.points, i, prev, j, next, minimum_length, clamped);
       system.clamped_weights += clamped;
       if(!std::isfinite(w)) {
-        message = "the weight of edge (" + std::to_string(i) + ", " + std::to_string(j) + ") is not finite (degenerate geometry?)";
+        message = "the weight of edge (" + std::to_string(input_vertex_index(mesh, i)) + ", "
+                  + std::to_string(input_vertex_index(mesh, static_cast<std::size_t>(j))) + ") is not finite (degenerate geometry?)";
         return Error_code::INVALID_WEIGHTS;
       }
       system.weights[k] = w;
@@ -182,7 +183,7 @@ inline Error_code assign_weights(Sphere_system& system, const Mesh_arrays& mesh,
     }
     if(!(sum > 0.) || !std::isfinite(1. / sum)) {
       std::ostringstream text;
-      text << "the weights around vertex " << i << " sum to " << sum << " (they must sum to a positive value)";
+      text << "the weights around vertex " << input_vertex_index(mesh, i) << " sum to " << sum << " (they must sum to a positive value)";
       message = text.str();
       return Error_code::INVALID_WEIGHTS;
     }

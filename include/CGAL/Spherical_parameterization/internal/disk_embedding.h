@@ -93,10 +93,19 @@ bool embed_one_disk(const Mesh_arrays& mesh, const Sphere_system& system, const 
   const std::size_t nv = system.number_of_vertices;
 
   std::vector<int> local(nv, -1), global_index;
+  std::size_t number_of_faces = 0;
   for(std::size_t f = 0; f < system.triangles.size(); ++f)
-    if(partition.face_in_disk_a[f] == side)
+    if(partition.face_in_disk_a[f] == side) {
+      ++number_of_faces;
       for(int g : system.triangles[f]) local[static_cast<std::size_t>(g)] = 0;
+    }
+  std::size_t number_of_vertices = 0;
+  for(int l : local) number_of_vertices += (l == 0);
   Half_mesh half;
+  // A disk has V + F - 1 edges: reserving them spares the mesh its reallocations.
+  half.reserve(static_cast<Half_mesh::size_type>(number_of_vertices), static_cast<Half_mesh::size_type>(number_of_vertices + number_of_faces),
+               static_cast<Half_mesh::size_type>(number_of_faces));
+  global_index.reserve(number_of_vertices);
   for(std::size_t g = 0; g < nv; ++g)
     if(local[g] == 0) {
       local[g] = static_cast<int>(global_index.size());

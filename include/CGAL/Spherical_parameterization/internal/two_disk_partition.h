@@ -32,24 +32,19 @@ struct Two_disk_partition {
   bool valid = false;
 };
 
-// opposite[3 f + k] = the face across the edge (t[k], t[k+1]) of face f.
-inline std::vector<int> face_adjacency(const std::vector<std::array<int, 3>>& triangles)
+// opposite[3 f + k] = the face across the edge (t[k], t[k+1]) of face f: the face of the directed edge
+// t[k+1] -> t[k], read off the ring of t[k+1] (no global sort of the 3 nf edges, which took a large share of the
+// partition's time on large meshes); -1 where there is none.
+inline std::vector<int> face_adjacency(const Sphere_system& system)
 {
-  const std::size_t nf = triangles.size();
-  std::vector<std::pair<std::uint64_t, int>> directed(3 * nf);
-  for(std::size_t f = 0; f < nf; ++f)
-    for(int k = 0; k < 3; ++k)
-      directed[3 * f + static_cast<std::size_t>(k)] = {
-          static_cast<std::uint64_t>(triangles[f][k]) << 32 | static_cast<std::uint64_t>(triangles[f][(k + 1) % 3]),
-          static_cast<int>(3 * f) + k};
-  std::sort(directed.begin(), directed.end());
-  std::vector<int> opposite(3 * nf, -1);
-  for(std::size_t f = 0; f < nf; ++f)
-    for(int k = 0; k < 3; ++k) {
-      const std::uint64_t twin = static_cast<std::uint64_t>(triangles[f][(k + 1) % 3]) << 32 |
-                                 static_cast<std::uint64_t>(triangles[f][k]);
-      auto it = std::lower_bound(directed.begin(), directed.end(), std::make_pair(twin, -1));
-      if(it != directed.end() && it->first == twin) opposite[3 * f + static_cast<std::size_t>(k)] = it->second / 3;
+  const std::vector<std::array<int, 3>>& triangles = system.triangles;
+  std::vector<int> opposite(3 * triangles.size(), -1);
+  for(std::size_t f = 0; f < triangles.size(); ++f)
+    for(std::size_t k = 0; k < 3; ++k) {
+      const int a = triangles[f][k];
+      const std::size_t b = static_cast<std::size_t>(triangles[f][(k + 1) % 3]);
+      for(std::size_t m = system.offsets[b]; m < system.offsets[b + 1]; ++m)
+        if(system.neighbors[m] == a) { opposite[3 * f + k] = system.ring_faces[m]; break; }
     }
   return opposite;
 }
@@ -203,7 +198,7 @@ inline Two_disk_partition split_into_two_disks(const Sphere_system& system, int 
   const auto& triangles = system.triangles;
   const std::size_t nf = triangles.size(), nv = system.number_of_vertices;
   if(nf < 2) return partition;
-  const std::vector<int> opposite = face_adjacency(triangles);
+  const std::vector<int> opposite = face_adjacency(system);
   for(int o : opposite) if(o < 0) return partition;
 
   // Faces that may join disk A: none of their vertices in METIS' second part.
