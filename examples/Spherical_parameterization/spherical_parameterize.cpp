@@ -687,9 +687,12 @@ int main(int argc, char** argv)
                               SP::parameters::admissible_weights(settings.admissible));
   progress.phase("input checks, then stage 1/3, initial guess");
   const Clock::time_point map_start = Clock::now();
+  // The two disks of stage 1 at the same time where TBB is linked (twice as fast on large meshes); the map does not
+  // depend on it.
+  using Concurrency = CGAL::Parallel_if_available_tag;
   const SP::Result result =
-      settings.sparse_lu ? SP::spherical_parameterize(mesh, sphere_map, SP::parameters::combine(parameters, CGAL::parameters::sparse_linear_solver(SP::Sparse_LU_disk_solver_traits())))
-                         : SP::spherical_parameterize(mesh, sphere_map, parameters);
+      settings.sparse_lu ? SP::spherical_parameterize<Concurrency>(mesh, sphere_map, SP::parameters::combine(parameters, CGAL::parameters::sparse_linear_solver(SP::Sparse_LU_disk_solver_traits())))
+                         : SP::spherical_parameterize<Concurrency>(mesh, sphere_map, parameters);
   run.map_seconds = seconds_since(map_start);
   std::signal(SIGINT, SIG_DFL);
 
