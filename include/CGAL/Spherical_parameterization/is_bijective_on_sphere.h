@@ -92,22 +92,10 @@ Sphere_map_certificate certify_sphere_map(const TriangleMesh& tm, VertexSphereMa
     const double r = internal::length(x[i]);
     unit[i] = r > 0. ? x[i] * (1. / r) : x[i];
   }
-  // The exact test runs on the user's coordinates, not on the normalized ones, and its verdict also gives the sign
-  // of each area: normalizing can move a triangle along a great circle across atan2's branch cut (the fuzzer).
-  std::size_t flipped = 0;
-  double area = 0.;
-  for(const auto& t : mesh.triangles) {
-    const std::size_t i = static_cast<std::size_t>(t[0]), j = static_cast<std::size_t>(t[1]), k = static_cast<std::size_t>(t[2]);
-    if(!internal::is_finite(x[i]) || !internal::is_finite(x[j]) || !internal::is_finite(x[k])) { ++flipped; continue; }
-    const bool positive = internal::is_positive(x[i], x[j], x[k]);
-    if(!positive) ++flipped;
-    area += internal::signed_spherical_area(unit[i], unit[j], unit[k], positive);
-  }
-  certificate.flipped_faces = flipped;
-  certificate.total_signed_area = area;
-  const double pi = 3.14159265358979323846;
-  certificate.bijective = certificate.valid_mesh && flipped == 0 && std::abs(area - 4. * pi) < pi &&
-                          internal::covering_number(mesh.triangles, x) == 1;
+  const internal::Sphere_certificate on_sphere = internal::certify(mesh.triangles, x, &unit);
+  certificate.flipped_faces = on_sphere.flipped_faces;
+  certificate.total_signed_area = on_sphere.total_signed_area;
+  certificate.bijective = certificate.valid_mesh && on_sphere.bijective;
   return certificate;
 }
 

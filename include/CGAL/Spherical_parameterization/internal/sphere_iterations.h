@@ -158,7 +158,6 @@ private:
     }
   }
 
-private:
   const Sphere_system& system_;
   std::vector<Vector3>& x_;
   std::vector<Vector3> s_;

@@ -17,6 +17,14 @@ namespace CGAL {
 namespace Spherical_parameterization {
 namespace internal {
 
+// The sum of the absolute values of the six products in a . (b x c): the scale of its rounding error.
+inline double determinant_permanent(const Vector3& a, const Vector3& b, const Vector3& c)
+{
+  return std::abs(a.x) * (std::abs(b.y * c.z) + std::abs(b.z * c.y)) +
+         std::abs(a.y) * (std::abs(b.z * c.x) + std::abs(b.x * c.z)) +
+         std::abs(a.z) * (std::abs(b.x * c.y) + std::abs(b.y * c.x));
+}
+
 // True when the spherical triangle (a, b, c) is positively oriented: orientation(ORIGIN, a, b, c) is POSITIVE,
 // decided exactly on the double coordinates. The determinant a . (b x c) is computed in double first; when it is
 // farther from 0 than its worst-case rounding error (Shewchuk's bound for orient3d, with the fourth point at the
@@ -26,9 +34,7 @@ inline bool is_positive(const Vector3& a, const Vector3& b, const Vector3& c)
 {
   const double bc_x = b.y * c.z - b.z * c.y, bc_y = b.z * c.x - b.x * c.z, bc_z = b.x * c.y - b.y * c.x;
   const double det = a.x * bc_x + a.y * bc_y + a.z * bc_z;
-  const double permanent = std::abs(a.x) * (std::abs(b.y * c.z) + std::abs(b.z * c.y)) +
-                           std::abs(a.y) * (std::abs(b.z * c.x) + std::abs(b.x * c.z)) +
-                           std::abs(a.z) * (std::abs(b.x * c.y) + std::abs(b.y * c.x));
+  const double permanent = determinant_permanent(a, b, c);
   const double bound = 7.7715611723761027e-16 * permanent;  // (7 + 56 eps) eps, eps = 2^-53
   if(det > bound) return true;
   if(det < -bound) return false;
@@ -49,9 +55,7 @@ inline double signed_spherical_area(const Vector3& a, const Vector3& b, const Ve
 {
   double numerator = determinant(a, b, c);
   double denominator = 1. + dot(a, b) + dot(b, c) + dot(c, a);
-  const double numerator_scale = std::abs(a.x) * (std::abs(b.y * c.z) + std::abs(b.z * c.y)) +
-                                 std::abs(a.y) * (std::abs(b.z * c.x) + std::abs(b.x * c.z)) +
-                                 std::abs(a.z) * (std::abs(b.x * c.y) + std::abs(b.y * c.x));
+  const double numerator_scale = determinant_permanent(a, b, c);
   const double denominator_scale = 1. + std::abs(a.x * b.x) + std::abs(a.y * b.y) + std::abs(a.z * b.z) +
                                    std::abs(b.x * c.x) + std::abs(b.y * c.y) + std::abs(b.z * c.z) +
                                    std::abs(c.x * a.x) + std::abs(c.y * a.y) + std::abs(c.z * a.z);
@@ -116,17 +120,20 @@ struct Sphere_certificate {
 // multiple coverings. Both are decided by exact predicates. The total area must be 4 pi as well (within pi: with
 // every triangle positive it is 4 pi times the degree); with the ill-conditioned areas evaluated exactly, the two
 // tests agree on every map, and the area stays as a check of the check.
-inline Sphere_certificate certify(const std::vector<std::array<int, 3>>& triangles, const std::vector<Vector3>& x)
+// `unit`: where the areas are measured, when x is not on the unit sphere (the user's map, radially projected);
+// the exact tests run on x itself, and their verdict also gives the sign of each area, because projecting can
+// move a triangle along a great circle across atan2's branch cut (found by the fuzzer).
+inline Sphere_certificate certify(const std::vector<std::array<int, 3>>& triangles, const std::vector<Vector3>& x,
+                                  const std::vector<Vector3>* unit = nullptr)
 {
+  const std::vector<Vector3>& on_sphere = unit != nullptr ? *unit : x;
   Sphere_certificate certificate;
   for(const auto& t : triangles) {
-    const Vector3& a = x[static_cast<std::size_t>(t[0])];
-    const Vector3& b = x[static_cast<std::size_t>(t[1])];
-    const Vector3& c = x[static_cast<std::size_t>(t[2])];
-    if(!is_finite(a) || !is_finite(b) || !is_finite(c)) { ++certificate.flipped_faces; continue; }
-    const bool positive = is_positive(a, b, c);
+    const std::size_t i = static_cast<std::size_t>(t[0]), j = static_cast<std::size_t>(t[1]), k = static_cast<std::size_t>(t[2]);
+    if(!is_finite(x[i]) || !is_finite(x[j]) || !is_finite(x[k])) { ++certificate.flipped_faces; continue; }
+    const bool positive = is_positive(x[i], x[j], x[k]);
     if(!positive) ++certificate.flipped_faces;
-    certificate.total_signed_area += signed_spherical_area(a, b, c, positive);
+    certificate.total_signed_area += signed_spherical_area(on_sphere[i], on_sphere[j], on_sphere[k], positive);
   }
   const double pi = 3.14159265358979323846;
   certificate.bijective = certificate.flipped_faces == 0 && std::abs(certificate.total_signed_area - 4. * pi) < pi &&
