@@ -56,8 +56,9 @@ void print_usage(std::ostream& out)
       << "Maps a closed, connected, genus-0 triangle mesh onto the unit sphere, bijectively\n"
          "(Saba, Yavneh, Gotsman, Sheffer: Practical Spherical Embedding of Manifold Triangle Meshes).\n"
          "Success means certified: every spherical triangle is positively oriented (exact predicate),\n"
-         "a generic point of the sphere lies in exactly one of them (the map has degree 1), and the paper's\n"
-         "residual Res is below the tolerance.\n"
+         "a generic point of the sphere lies in exactly one of them (the map has degree 1), and every vertex\n"
+         "is balanced: its imbalance e_i (distance from the weighted balance point of its neighbours, in\n"
+         "units of its own neighbourhood) is at most the tolerance.\n"
          "\n"
          "Input and output:\n"
          "  INPUT                 a mesh: .off (also gzip-compressed, .off.gz), .obj, .ply, .stl\n"
@@ -71,7 +72,12 @@ void print_usage(std::ostream& out)
          "      --admissible-weights  solve with the closest symmetric positive weights instead (the mean of\n"
          "                        w_ij and w_ji, negative ones raised): the theory's case, for cotangent and\n"
          "                        mean_value weights that fail\n"
-         "  -t, --tolerance T     stop when Res < T (default 1e-6)\n"
+         "  -t, --tolerance T     stop when every imbalance e_i <= T (default 1e-6)\n"
+         "      --gauss-seidel-sweeps N  cap of stage 2, the paper's projected Gauss-Seidel (default: the\n"
+         "                        library's, see the manual)\n"
+         "      --criterion C     imbalance (default) or paper: stop when the paper's Res < T instead (Res\n"
+         "                        shrinks with the mesh size: on large meshes it passes while vertices are\n"
+         "                        still far from balanced)\n"
          "  -s, --solver S        stage 3: global (Newton on all vertices at once, default) or local (the paper's)\n"
          "      --disk-solver D   linear solver of the disk stage: amg (default) or sparse_lu (Eigen)\n"
          "      --max-seconds S   time budget of the iterations, S > 0 (default: none)\n"
@@ -94,7 +100,8 @@ void print_usage(std::ostream& out)
          "\n"
          "JSON object (--json), printed when the mesh was read (exit 0, 1 or 2); a figure not computed is null:\n"
          "  format (\"spherical_parameterize/1\"), input, output (null if nothing written), status (e.g. \"OK\",\n"
-         "  \"GENUS_NOT_ZERO\"), success, message, vertices, faces, weights, tolerance, residual (Res),\n"
+         "  \"GENUS_NOT_ZERO\"), success, message, vertices, faces, weights, criterion, tolerance, max_imbalance,\n"
+         "  imbalance_percentile_99, unbalanced_vertices, vertices_at_rounding_floor, residual (Res),\n"
          "  max_tangential_residual, flipped_faces, total_signed_area, bijective, initial_flipped_faces,\n"
          "  uniform_initial_guess_fallback, admissible_weights, raised_weights, clamped_weights, rejected_moves,\n"
          "  separator_size, cut_loop_length,\n"
@@ -258,6 +265,7 @@ std::string json_count(std::size_t n, bool known = true) { return known ? std::t
 struct Run_figures {
   std::string input, output;  // output empty: nothing written
   std::string weights;
+  std::string criterion = "imbalance";
   double tolerance = 1e-6;
   double read_seconds = 0., map_seconds = 0., write_seconds = 0., total_seconds = 0.;
 };
@@ -279,7 +287,12 @@ void print_json(std::ostream& out, const SP::Result& r, const Run_figures& run)
       << "  \"vertices\": " << r.number_of_vertices << ",\n"
       << "  \"faces\": " << r.number_of_faces << ",\n"
       << "  \"weights\": " << json_string(run.weights) << ",\n"
+      << "  \"criterion\": " << json_string(run.criterion) << ",\n"
       << "  \"tolerance\": " << json_number(run.tolerance) << ",\n"
+      << "  \"max_imbalance\": " << json_number(r.max_imbalance, computed) << ",\n"
+      << "  \"imbalance_percentile_99\": " << json_number(r.imbalance_percentile_99, computed) << ",\n"
+      << "  \"unbalanced_vertices\": " << json_count(r.unbalanced_vertices, computed) << ",\n"
+      << "  \"vertices_at_rounding_floor\": " << json_count(r.vertices_at_rounding_floor, computed) << ",\n"
       << "  \"residual\": " << json_number(r.residual, computed) << ",\n"
       << "  \"max_tangential_residual\": " << json_number(r.max_tangential_residual, computed) << ",\n"
       << "  \"flipped_faces\": " << json_count(r.flipped_faces, computed) << ",\n"
@@ -311,7 +324,11 @@ void print_text(std::ostream& out, const SP::Result& r, const Run_figures& run)
       << "status:          " << SP::get_error_name(r.status) << ": " << r.message << "\n";
   if(r.residual < 0.) return;
   out << std::setprecision(4)
-      << "Res (paper):     " << r.residual << " (tolerance " << run.tolerance << ", " << run.weights << " weights)\n"
+      << "max imbalance:   " << r.max_imbalance << " (99th percentile " << r.imbalance_percentile_99 << "; "
+      << r.unbalanced_vertices << (r.unbalanced_vertices == 1 ? " vertex" : " vertices") << " above the tolerance " << run.tolerance << ", "
+      << r.vertices_at_rounding_floor << " held to their rounding floor; " << run.weights << " weights, stopping on "
+      << run.criterion << ")\n"
+      << "Res (paper):     " << r.residual << "\n"
       << "max tangential:  " << r.max_tangential_residual << "\n"
       << "flipped faces:   " << r.flipped_faces << " (exact orientation test)\n"
       << std::setprecision(12)
@@ -379,6 +396,8 @@ const Option options[] = {
   {"-o", "--output", "a file name ending in .off or .ply"},
   {"-w", "--weights", "uniform, cotangent or mean_value"},
   {"-t", "--tolerance", "a positive number such as 1e-6"},
+  {"", "--criterion", "imbalance or paper"},
+  {"", "--gauss-seidel-sweeps", "a number of sweeps, 0 or more"},
   {"-s", "--solver", "global or local"},
   {"", "--disk-solver", "amg or sparse_lu"},
   {"", "--max-seconds", "a positive number of seconds"},
@@ -443,6 +462,8 @@ struct Settings {
   std::string weights_name = "uniform";
   SP::Weighting weighting = SP::Weighting::UNIFORM;
   double tolerance = 1e-6, max_seconds = -1.;
+  std::string criterion = "imbalance";
+  long gauss_seidel_sweeps = -1;  // -1: the library's default
   int seed = 0;
   bool quiet = false, json = false, backtracking = true, sparse_lu = false, admissible = false;
   SP::Nonlinear_solver solver = SP::Nonlinear_solver::GLOBAL_NEWTON;
@@ -512,6 +533,11 @@ Settings parse_arguments(int argc, char** argv)
                          : settings.weights_name == "cotangent" ? SP::Weighting::COTANGENT : SP::Weighting::MEAN_VALUE;
     }
     else if(canonical == "--tolerance") settings.tolerance = positive_number(name, value);
+    else if(canonical == "--gauss-seidel-sweeps") {
+      settings.gauss_seidel_sweeps = integer(name, value);
+      if(settings.gauss_seidel_sweeps < 0) usage_error(name + " needs a number of sweeps, 0 or more");
+    }
+    else if(canonical == "--criterion") settings.criterion = choice(canonical, value, {"imbalance", "paper"});
     else if(canonical == "--max-seconds") settings.max_seconds = positive_number(name, value);
     else if(canonical == "--seed") settings.seed = integer(name, value);
     else if(canonical == "--solver")
@@ -629,6 +655,7 @@ int main(int argc, char** argv)
   run.input = input;
   run.weights = settings.weights_name;
   run.tolerance = settings.tolerance;
+  run.criterion = settings.criterion;
   Progress_line progress(!settings.quiet, start);
   std::signal(SIGINT, on_interrupt);
 
@@ -682,9 +709,14 @@ int main(int argc, char** argv)
   const auto parameters =
       SP::parameters::combine(SP::parameters::weighting(settings.weighting), SP::parameters::tolerance(settings.tolerance),
                               SP::parameters::max_seconds(settings.max_seconds), SP::parameters::metis_seed(settings.seed),
+                              SP::parameters::max_gauss_seidel_sweeps(settings.gauss_seidel_sweeps >= 0
+                                                                          ? std::size_t(settings.gauss_seidel_sweeps)
+                                                                          : SP::default_max_gauss_seidel_sweeps),
                               SP::parameters::preserve_bijectivity(settings.backtracking),
                               SP::parameters::nonlinear_solver(settings.solver), SP::parameters::progress_callback(report),
-                              SP::parameters::admissible_weights(settings.admissible));
+                              SP::parameters::admissible_weights(settings.admissible),
+                              SP::parameters::convergence_test(settings.criterion == "paper" ? SP::Convergence_test::PAPER_RESIDUAL
+                                                                                             : SP::Convergence_test::IMBALANCE));
   progress.phase("input checks, then stage 1/3, initial guess");
   const Clock::time_point map_start = Clock::now();
   // The two disks of stage 1 at the same time where TBB is linked (twice as fast on large meshes); the map does not

@@ -4,6 +4,7 @@
 #define CGAL_SPHERICAL_PARAMETERIZATION_RESULT_H
 
 #include <CGAL/Spherical_parameterization/Error_code.h>
+#include <CGAL/Spherical_parameterization/parameters.h>
 
 #include <cstddef>
 #include <string>
@@ -32,13 +33,27 @@ struct Result {
   double residual = -1.;
   double max_tangential_residual = -1.; ///< `max_i |alpha_i x_i - sum_j w_ij x_j|` (same normalization).
 
+  /// The largest imbalance \f$ e_i = |t_i| / \sum_j |w_{ij}| |x_j - x_i| \f$ over the vertices (see
+  /// `Convergence_test::IMBALANCE`): how far a vertex is from the balance point of its neighbours, in units of its
+  /// own neighbourhood. The default convergence test is `max_imbalance <= tolerance`, except at vertices whose
+  /// rounding floor is larger.
+  double max_imbalance = -1.;
+  double imbalance_percentile_99 = -1.;   ///< The 99th percentile of the imbalances \f$ e_i \f$.
+  /// Vertices whose neighbourhood is so small (spherical edges below about 2e-9) that positions rounded to double
+  /// carry an imbalance above the tolerance: \f$ 8 \cdot 2 \sqrt{3} \, 2^{-53} \sum_j |w_{ij}| / \sum_j |w_{ij}| |x_j - x_i| \f$,
+  /// their rounding floor. The imbalance test holds them to that floor instead of the tolerance.
+  std::size_t vertices_at_rounding_floor = 0;
+  /// Vertices whose imbalance exceeds the tolerance (or their rounding floor, where it is larger); 0 when balanced.
+  std::size_t unbalanced_vertices = 0;
+  Convergence_test convergence_test = Convergence_test::IMBALANCE; ///< The test the iterations stopped on.
+
   std::size_t flipped_faces = 0;        ///< Spherical triangles with `orientation(ORIGIN,p,q,r) != POSITIVE` (exact).
   double total_signed_area = 0.;        ///< Sum of the signed spherical areas (4 pi when bijective).
   bool bijective = false;               ///< No flipped face and a generic point covered once (exact predicates).
 
   Stage_statistics initial_guess;       ///< Stage 1: separator, two disks, Moebius, stereographic projection.
   Stage_statistics gauss_seidel;        ///< Stage 2: projected Gauss-Seidel while `Res` decreases.
-  Stage_statistics newton;              ///< Stage 3: the `nonlinear_solver` until `Res < tolerance`.
+  Stage_statistics newton;              ///< Stage 3: the `nonlinear_solver` until the `convergence_test` holds.
   double total_seconds = 0.;            ///< Wall-clock time of the whole call, input checks included.
 
   std::size_t number_of_vertices = 0;   ///< Vertices of the input mesh.

@@ -34,14 +34,33 @@ enum class Nonlinear_solver {
 };
 
 /// \ingroup PkgSphericalParameterizationRef
+/// When the iterations stop (named parameter `convergence_test`).
+enum class Convergence_test {
+  /// Every vertex balanced in its own scale (default): the imbalance
+  /// \f$ e_i = |t_i| / \sum_j |w_{ij}| \, |x_j - x_i| \f$, with \f$ t_i \f$ the tangential part of
+  /// \f$ \sum_j w_{ij} (x_j - x_i) \f$ (weights normalized to sum to one), is at most the tolerance at every vertex,
+  /// or at most the vertex's rounding floor where that is larger (see `Result::vertices_at_rounding_floor`).
+  IMBALANCE,
+  /// The paper's test: `Res < tolerance`. `Res` carries a factor 1/sqrt(n) against the root mean square of the
+  /// per-vertex residuals, so on large meshes it passes while vertices are still far from balanced; kept to
+  /// reproduce the paper's setting.
+  PAPER_RESIDUAL
+};
+
+/// \ingroup PkgSphericalParameterizationRef
 /// What the `progress_callback` named parameter receives, at the end of every stage and after every iteration.
 struct Progress {
   const char* stage = "";          ///< "initial guess", "gauss-seidel", "global newton" or "local newton".
   std::size_t iteration = 0;       ///< Iterations of that stage so far (0 for the initial guess).
   double residual = -1.;           ///< The paper's `Res` now.
+  double max_imbalance = -1.;      ///< The largest imbalance `e_i` (see `Convergence_test`) at the end of stage 1; -1 in the per-iteration reports.
   std::size_t non_positive_faces = 0; ///< Spherical triangles not positively oriented now.
   double seconds = 0.;             ///< Since the call started.
 };
+
+/// \ingroup PkgSphericalParameterizationRef
+/// The default of the `max_gauss_seidel_sweeps` named parameter.
+constexpr std::size_t default_max_gauss_seidel_sweeps = 1000;
 
 namespace internal_np {
 // Tag types of the package's own named parameters.
@@ -56,6 +75,7 @@ enum nonlinear_solver_t { nonlinear_solver };
 enum metis_seed_t { metis_seed };
 enum progress_callback_t { progress_callback };
 enum admissible_weights_t { admissible_weights };
+enum convergence_test_t { convergence_test };
 } // namespace internal_np
 
 namespace parameters {
@@ -83,8 +103,10 @@ CGAL_SPHERICAL_PARAMETERIZATION_NAMED_PARAMETER(weighting)
 /// A readable property map from halfedges to `double`: the weight of `source(h)` in the equation of `target(h)`.
 /// Implies `Weighting::USER_MAP` when `weighting` is not given.
 CGAL_SPHERICAL_PARAMETERIZATION_NAMED_PARAMETER(halfedge_weight_map)
-/// Stop when the paper's residual `Res` is below this value (default `1e-6`).
+/// The tolerance of the `convergence_test` (default `1e-6`): the largest imbalance `e_i` allowed, or the paper's `Res`.
 CGAL_SPHERICAL_PARAMETERIZATION_NAMED_PARAMETER(tolerance)
+/// When the iterations stop (`Convergence_test`), default `Convergence_test::IMBALANCE`.
+CGAL_SPHERICAL_PARAMETERIZATION_NAMED_PARAMETER(convergence_test)
 /// Iteration cap of stage 2 (projected Gauss-Seidel sweeps, default 1000).
 CGAL_SPHERICAL_PARAMETERIZATION_NAMED_PARAMETER(max_gauss_seidel_sweeps)
 /// Iteration cap of stage 3 (sweeps of the nonlinear solver, default 200000).

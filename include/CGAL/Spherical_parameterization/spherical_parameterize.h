@@ -160,16 +160,18 @@ Result run_pipeline(const Mesh_arrays& mesh, Sphere_system& system, const Pipeli
   result.initial_flipped_faces = start.flipped_faces;
   result.initial_guess.iterations = 2;
   result.initial_guess.residual = compute_residuals(system, x).paper;
+  const double initial_imbalance = summarize_imbalance(system, x, options.iterations.tolerance).max;
   result.initial_guess.seconds = stage.seconds();
   if(options.verbose)
     std::cerr << "stage 1: separator " << result.separator_size << " vertices, loop " << result.cut_loop_length
               << " vertices, Res " << result.initial_guess.residual << ", non-positive faces " << start.flipped_faces
-              << ", " << result.initial_guess.seconds << " s\n";
+              << ", max imbalance " << initial_imbalance << ", " << result.initial_guess.seconds << " s\n";
   bool cancelled = false;
   if(options.report) {
     Progress progress;
     progress.stage = "initial guess";
     progress.residual = result.initial_guess.residual;
+    progress.max_imbalance = initial_imbalance;
     progress.non_positive_faces = start.flipped_faces;
     progress.seconds = total.seconds();
     cancelled = !options.report(progress);
@@ -183,6 +185,9 @@ Result run_pipeline(const Mesh_arrays& mesh, Sphere_system& system, const Pipeli
   const Inscribability_check inscribability = check_inscribability(system);
   const bool no_balanced_solution = positive_weights && inscribability.proven_not_inscribable;
   Iteration_options iteration_options = options.iterations;
+  // Non-symmetric weights (mean value) have no exact solution in general: the imbalance cannot reach the tolerance.
+  // Until the stationarity test of their least-squares problem exists, they stop on the paper's Res, and say so.
+  if(!system.symmetric) iteration_options.convergence_test = Convergence_test::PAPER_RESIDUAL;
   if(no_balanced_solution) {
     iteration_options.max_gauss_seidel_sweeps = start.flipped_faces == 0 ? 0 : std::min<std::size_t>(iteration_options.max_gauss_seidel_sweeps, 100);
     iteration_options.max_newton_sweeps = start.flipped_faces == 0 ? 0 : std::min<std::size_t>(iteration_options.max_newton_sweeps, 100);
@@ -193,10 +198,28 @@ Result run_pipeline(const Mesh_arrays& mesh, Sphere_system& system, const Pipeli
   const std::vector<Vector3> initial_guess = x;
   Sphere_state state(system, x);
   Stopwatch iterations_clock;
+  // The default solver first tries Newton's full steps (through folds, keeping degree 1) from the initial guess:
+  // where they converge (most meshes, in 4 to 20 steps) stage 2 is not needed. Otherwise the paper's order
+  // follows from the initial guess again: stage 2, then stage 3 (which tries the same steps from stage 2's result
+  // before the bijectivity-preserving ones).
+  Iteration_report direct_newton;
+  Stopwatch direct_clock;
+  const bool try_direct_newton = !cancelled && !no_balanced_solution && system.symmetric &&
+                                 options.nonlinear_solver == Nonlinear_solver::GLOBAL_NEWTON && iteration_options.max_newton_sweeps > 0;
+  if(try_direct_newton) {
+    direct_newton = mobius_newton(state, iteration_options, iterations_clock, nullptr, free_newton_patience, true);
+    cancelled = direct_newton.cancelled;
+    if(!direct_newton.converged && !cancelled && !direct_newton.out_of_time) state.assign(initial_guess);
+    if(iteration_options.max_newton_sweeps > direct_newton.sweeps) iteration_options.max_newton_sweeps -= direct_newton.sweeps;
+    else iteration_options.max_newton_sweeps = 0;
+  }
+  const double direct_seconds = direct_clock.seconds();
+  const bool direct_done = direct_newton.converged || direct_newton.out_of_time;
+
   stage = Stopwatch();
   Iteration_report gauss_seidel;
-  if(!cancelled) gauss_seidel = projected_gauss_seidel(state, iteration_options, iterations_clock);
-  else gauss_seidel.residual = result.initial_guess.residual;
+  if(!cancelled && !direct_done) gauss_seidel = projected_gauss_seidel(state, iteration_options, iterations_clock);
+  else gauss_seidel.residual = direct_newton.converged ? direct_newton.residual : result.initial_guess.residual;
   cancelled = cancelled || gauss_seidel.cancelled;
   result.gauss_seidel.iterations = gauss_seidel.sweeps;
   result.gauss_seidel.residual = gauss_seidel.residual;
@@ -207,15 +230,15 @@ Result run_pipeline(const Mesh_arrays& mesh, Sphere_system& system, const Pipeli
 
   stage = Stopwatch();
   Iteration_report newton;
-  if(!gauss_seidel.converged && !gauss_seidel.out_of_time && !cancelled && iteration_options.max_newton_sweeps > 0)
+  if(!direct_done && !gauss_seidel.converged && !gauss_seidel.out_of_time && !cancelled && iteration_options.max_newton_sweeps > 0)
     newton = options.nonlinear_solver == Nonlinear_solver::LOCAL_NEWTON
                  ? local_newton(state, iteration_options, iterations_clock)
                  : global_newton(state, iteration_options, iterations_clock, &initial_guess);
   else newton.residual = gauss_seidel.residual;
   cancelled = cancelled || newton.cancelled;
-  result.newton.iterations = newton.sweeps;
-  result.newton.residual = newton.residual;
-  result.newton.seconds = stage.seconds();
+  result.newton.iterations = newton.sweeps + direct_newton.sweeps;
+  result.newton.residual = direct_done ? direct_newton.residual : newton.residual;
+  result.newton.seconds = stage.seconds() + direct_seconds;
   result.rejected_moves = gauss_seidel.rejected_moves + newton.rejected_moves;
   result.continuation_parameter = newton.continuation_parameter;
   if(options.verbose)
@@ -230,11 +253,21 @@ Result run_pipeline(const Mesh_arrays& mesh, Sphere_system& system, const Pipeli
   result.flipped_faces = certificate.flipped_faces;
   result.total_signed_area = certificate.total_signed_area;
   result.bijective = certificate.bijective;
-  const bool converged = result.residual < options.iterations.tolerance;
+  const Imbalance_summary imbalance = summarize_imbalance(system, x, options.iterations.tolerance);
+  result.max_imbalance = imbalance.max;
+  result.imbalance_percentile_99 = imbalance.percentile_99;
+  result.vertices_at_rounding_floor = imbalance.vertices_at_rounding_floor;
+  result.unbalanced_vertices = imbalance.unbalanced_vertices;
+  result.convergence_test = iteration_options.convergence_test;
+  const bool converged = iteration_options.convergence_test == Convergence_test::PAPER_RESIDUAL
+                             ? result.residual < options.iterations.tolerance
+                             : imbalance.balanced();
   result.status = !converged ? Error_code::NOT_CONVERGED : (certificate.bijective ? Error_code::OK : Error_code::NOT_BIJECTIVE);
   if(cancelled) result.status = Error_code::CANCELLED;
   if(no_balanced_solution) result.status = Error_code::NO_BALANCED_SOLUTION;
   result.message = get_error_message(result.status);
+  if(iteration_options.convergence_test != options.iterations.convergence_test)
+    result.message += " [non-symmetric weights: stopped on the paper's Res, their imbalance cannot reach the tolerance]";
   if(no_balanced_solution) {
     std::ostringstream details;
     details << " (proof: " << inscribability.independent_set_size << " of the " << system.number_of_vertices
@@ -246,7 +279,8 @@ Result run_pipeline(const Mesh_arrays& mesh, Sphere_system& system, const Pipeli
     result.message += details.str();
   } else if(result.status != Error_code::OK) {
     std::ostringstream details;
-    details << " (Res " << result.residual << ", " << result.flipped_faces << " flipped faces";
+    details << " (max imbalance " << result.max_imbalance << ", " << result.unbalanced_vertices
+            << " vertices above the tolerance, Res " << result.residual << ", " << result.flipped_faces << " flipped faces";
     if(result.continuation_parameter >= 0. && result.continuation_parameter < 1.)
       details << "; the balanced maps from Tutte's weights towards these could be followed only "
               << static_cast<int>(100. * result.continuation_parameter) << "% of the way";
@@ -270,7 +304,7 @@ Result run_pipeline(const Mesh_arrays& mesh, Sphere_system& system, const Pipeli
 /// Gotsman and Sheffer: an initial guess from two planar disks (METIS separator, CGAL's fixed-border
 /// parameterizers, Moebius inversion, inverse stereographic projection), projected Gauss-Seidel while the
 /// residual decreases, then Newton steps (by default on all vertices at once; the paper's local Newton on request)
-/// until the residual `Res` is below the tolerance. The output is
+/// until every vertex is balanced in its own scale (`Convergence_test::IMBALANCE`). The output is
 /// certified: every spherical triangle is positively oriented under an exact predicate and the areas add up to
 /// 4 pi (`Result::bijective`); only then is the status `Error_code::OK`.
 ///
@@ -310,8 +344,11 @@ Result run_pipeline(const Mesh_arrays& mesh, Sphere_system& system, const Pipeli
 ///     (`w_ij`, `w_ji` replaced by their mean, weights below 1% of the local mean raised to it), for which the theory
 ///     guarantees a bijective solution on inscribable meshes; `Result::raised_weights` counts the edges raised}
 ///     \cgalParamType{`bool`} \cgalParamDefault{`false`} \cgalParamNEnd
-///   \cgalParamNBegin{tolerance} \cgalParamDescription{stop when `Res` is below it}
+///   \cgalParamNBegin{tolerance} \cgalParamDescription{stop when every vertex's imbalance `e_i` is at most this value
+///     (or its rounding floor, where larger); with `Convergence_test::PAPER_RESIDUAL`, when `Res` is below it}
 ///     \cgalParamType{`double`} \cgalParamDefault{`1e-6`} \cgalParamNEnd
+///   \cgalParamNBegin{convergence_test} \cgalParamDescription{the stopping test of the iterations}
+///     \cgalParamType{`Convergence_test`} \cgalParamDefault{`Convergence_test::IMBALANCE`} \cgalParamNEnd
 ///   \cgalParamNBegin{max_gauss_seidel_sweeps} \cgalParamDescription{iteration cap of stage 2}
 ///     \cgalParamType{`std::size_t`} \cgalParamDefault{1000} \cgalParamNEnd
 ///   \cgalParamNBegin{max_newton_sweeps} \cgalParamDescription{iteration cap of stage 3}
@@ -394,8 +431,9 @@ Result spherical_parameterize(const TriangleMesh& tm, VertexSphereMap vsm,
       choose_parameter(get_parameter(np, CGAL::internal_np::METIS_options), static_cast<idx_t*>(nullptr)));
   options.verbose = choose_parameter(get_parameter(np, CGAL::internal_np::verbose), false);
   options.iterations.tolerance = choose_parameter(get_parameter(np, internal_np::tolerance), 1e-6);
+  options.iterations.convergence_test = choose_parameter(get_parameter(np, internal_np::convergence_test), Convergence_test::IMBALANCE);
   options.iterations.max_gauss_seidel_sweeps =
-      choose_parameter(get_parameter(np, internal_np::max_gauss_seidel_sweeps), std::size_t(1000));
+      choose_parameter(get_parameter(np, internal_np::max_gauss_seidel_sweeps), default_max_gauss_seidel_sweeps);
   options.iterations.max_newton_sweeps = choose_parameter(get_parameter(np, internal_np::max_newton_sweeps), std::size_t(200000));
   options.iterations.max_seconds = choose_parameter(get_parameter(np, internal_np::max_seconds), -1.);
   options.iterations.preserve_bijectivity = choose_parameter(get_parameter(np, internal_np::preserve_bijectivity), true);

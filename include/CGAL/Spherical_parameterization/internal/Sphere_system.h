@@ -276,6 +276,85 @@ inline Residuals compute_residuals(const Sphere_system& system, const std::vecto
   return r;
 }
 
+// The imbalance of vertex i, the default convergence measure: e_i = |t_i| / l_i with d_i = sum_j w_ij (x_j - x_i)
+// (normalized weights), t_i its tangential part at x_i and l_i = sum_j |w_ij| |x_j - x_i|: how far x_i is from the
+// balance point of its neighbours, in units of its own neighbourhood, whatever the size of its triangles. The
+// differences keep the digits of spherical edges of 1e-10, which sums of O(1) positions would lose.
+//
+// Positions rounded to double carry an imbalance of their own: moving x_i and its neighbours by half an ulp
+// (|dx| <= sqrt(3) 2^-53 each) changes d_i by up to 2 sqrt(3) 2^-53 sum_j |w_ij|. `rounding_floor` is
+// imbalance_rounding_factor times that, over l_i: below it no solver can balance the vertex in double precision,
+// so a vertex passes when e_i <= max(tolerance, rounding_floor_i). It exceeds 1e-6 only for neighbourhoods below
+// about 2e-9 (the thin limbs of organic models); such vertices are counted and reported.
+constexpr double imbalance_rounding_factor = 8.;
+
+struct Vertex_imbalance {
+  double imbalance = 0.;      // e_i
+  double rounding_floor = 0.; // the smallest e_i that double precision can promise at this vertex
+};
+
+inline Vertex_imbalance vertex_imbalance(const Sphere_system& system, const std::vector<Vector3>& x, std::size_t i)
+{
+  Vector3 d;
+  double scale = 0., weight_magnitude = 0.;
+  for(std::size_t k = system.offsets[i]; k < system.offsets[i + 1]; ++k) {
+    const Vector3 e = x[static_cast<std::size_t>(system.neighbors[k])] - x[i];
+    const double w = system.weights[k];
+    d += w * e;
+    scale += std::abs(w) * length(e);
+    weight_magnitude += std::abs(w);
+  }
+  const double tangential = length(tangential_part(x[i], d));
+  constexpr double half_ulp = 1.1102230246251565e-16;  // 2^-53
+  Vertex_imbalance result;
+  if(scale > 0.) {
+    result.imbalance = tangential / scale;
+    result.rounding_floor = imbalance_rounding_factor * 2. * std::sqrt(3.) * half_ulp * weight_magnitude / scale;
+  } else {
+    // Every neighbour on top of x_i: balanced when nothing pulls, infinitely far from it otherwise.
+    result.imbalance = tangential > 0. ? HUGE_VAL : 0.;
+    result.rounding_floor = HUGE_VAL;
+  }
+  if(!(result.imbalance == result.imbalance)) result.imbalance = HUGE_VAL;  // NaN positions are never balanced
+  return result;
+}
+
+struct Imbalance_summary {
+  double max = 0.;                          // max_i e_i
+  double percentile_99 = 0.;                // the 99th percentile of e_i
+  double worst_ratio = 0.;                  // max_i e_i / max(tolerance, rounding_floor_i): <= 1 when balanced
+  std::size_t unbalanced_vertices = 0;      // e_i > max(tolerance, rounding_floor_i)
+  std::size_t vertices_at_rounding_floor = 0; // rounding_floor_i > tolerance: tested against their floor
+  bool balanced() const { return unbalanced_vertices == 0; }
+};
+
+// The imbalance of every vertex against `tolerance`; `values` (optional) receives e_i.
+inline Imbalance_summary summarize_imbalance(const Sphere_system& system, const std::vector<Vector3>& x, double tolerance,
+                                             std::vector<double>* values = nullptr)
+{
+  const std::size_t n = system.number_of_vertices;
+  std::vector<double> local;
+  std::vector<double>& e = values != nullptr ? *values : local;
+  e.resize(n);
+  Imbalance_summary summary;
+  for(std::size_t i = 0; i < n; ++i) {
+    const Vertex_imbalance v = vertex_imbalance(system, x, i);
+    e[i] = v.imbalance;
+    const double allowed = std::max(tolerance, v.rounding_floor);
+    summary.max = std::max(summary.max, v.imbalance);
+    summary.worst_ratio = std::max(summary.worst_ratio, allowed > 0. ? v.imbalance / allowed : (v.imbalance > 0. ? HUGE_VAL : 0.));
+    summary.unbalanced_vertices += !(v.imbalance <= allowed);
+    summary.vertices_at_rounding_floor += v.rounding_floor > tolerance;
+  }
+  if(n > 0) {
+    std::vector<double> sorted(e);
+    const std::size_t rank = std::min(n - 1, static_cast<std::size_t>(std::ceil(0.99 * static_cast<double>(n))) - 1);
+    std::nth_element(sorted.begin(), sorted.begin() + static_cast<std::ptrdiff_t>(rank), sorted.end());
+    summary.percentile_99 = sorted[rank];
+  }
+  return summary;
+}
+
 } // namespace internal
 } // namespace Spherical_parameterization
 } // namespace CGAL

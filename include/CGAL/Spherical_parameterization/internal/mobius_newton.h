@@ -31,11 +31,29 @@ struct Mobius_newton_statistics {
   bool gave_up = false;            // Newton's steps were too short: the caller should continue otherwise
 };
 
-// Iterates until Res < tolerance with every face positive, the caps, or `patience` iterations in a row whose step
-// had to be cut below a quarter (Newton's model does not hold: far from the solution, or a multi-scale mesh whose
-// thin parts must shrink by orders of magnitude); then `gave_up` is set and the best iterate is restored.
+// The signed spherical areas add up to 4 pi times the degree of the map. Folds keep the degree; a collapse of the
+// map onto a small cap, the trivial solution the boosts lead to, has to pass through a triangle larger than a
+// hemisphere, which changes the sum by a multiple of 4 pi.
+inline bool has_degree_one(const Sphere_system& system, const std::vector<Vector3>& x)
+{
+  double area = 0.;
+  for(const auto& t : system.triangles)
+    area += signed_spherical_area(x[static_cast<std::size_t>(t[0])], x[static_cast<std::size_t>(t[1])], x[static_cast<std::size_t>(t[2])]);
+  return std::abs(area - 4. * CGAL_PI) < CGAL_PI;
+}
+
+// Iterates until the convergence test holds with every face positive, the caps, or `patience` iterations in a row
+// whose step had to be cut below a quarter (Newton's model does not hold: far from the solution, or a multi-scale
+// mesh whose thin parts must shrink by orders of magnitude); then `gave_up` is set and the best iterate is restored.
+//
+// `allow_folds`: the steps may fold triangles on the way, as long as the map keeps degree 1 (has_degree_one); the
+// balanced map is bijective, and Newton's full steps reach it from the initial guess on most meshes in 4 to 20
+// steps, where steps shortened to keep every triangle positive crawl (thin limbs: the first steps fold some tiny
+// triangles wherever they go). It gives up after `patience` iterations without convergence, when no step lowers
+// Res, or on a balanced map that is folded (a balanced map of degree 1 need not be bijective).
 inline Iteration_report mobius_newton(Sphere_state& state, const Iteration_options& options, const Stopwatch& clock,
-                                      Mobius_newton_statistics* statistics = nullptr, std::size_t patience = 3)
+                                      Mobius_newton_statistics* statistics = nullptr, std::size_t patience = 3,
+                                      bool allow_folds = false)
 {
   Iteration_report report;
   Mobius_newton_statistics counts;
@@ -51,8 +69,14 @@ inline Iteration_report mobius_newton(Sphere_state& state, const Iteration_optio
   double best_residual = residual;
   std::size_t best_invalid = state.invalid_faces();
   std::size_t short_steps = 0;
-  while(!(residual < options.tolerance && state.invalid_faces() == 0)) {
+  std::vector<double> history;
+  while(!has_converged(system, x, residual, state.invalid_faces(), options)) {
     if(report.sweeps >= options.max_newton_sweeps) break;
+    if(allow_folds && (report.sweeps >= patience ||
+                       (state.invalid_faces() > 0 && summarize_imbalance(system, x, options.tolerance).balanced()))) {
+      counts.gave_up = true;
+      break;
+    }
     if(options.max_seconds >= 0. && clock.seconds() > options.max_seconds) { report.out_of_time = true; break; }
 
     // The boost gradient only needs to be small next to the residual forces that Newton is about to remove.
@@ -60,7 +84,7 @@ inline Iteration_report mobius_newton(Sphere_state& state, const Iteration_optio
     residual = compute_residuals(system, x).paper;
 
     double accepted_t = 0.;
-    if(newton.factorize(x) && newton.solve(step)) {
+    if(newton.factorize(x) && newton.solve(step, allow_folds)) {
       Vector3 rotation, boost;
       remove_rotation_and_boost(x, step, rotation, boost);
       for(double t = 1.; t > 1e-3; t *= 0.5) {
@@ -68,7 +92,7 @@ inline Iteration_report mobius_newton(Sphere_state& state, const Iteration_optio
           const Vector3 y = x[i] + t * step[i];
           trial[i] = apply_boost(y * (1. / length(y)), t * boost);
         }
-        if(options.preserve_bijectivity && !state.keeps_positive_faces(trial)) continue;
+        if(allow_folds ? !has_degree_one(system, trial) : options.preserve_bijectivity && !state.keeps_positive_faces(trial)) continue;
         const double trial_residual = compute_residuals(system, trial).paper;
         if(trial_residual < residual) {
           state.assign(trial);
@@ -79,6 +103,10 @@ inline Iteration_report mobius_newton(Sphere_state& state, const Iteration_optio
           break;
         }
       }
+    }
+    if(accepted_t == 0. && allow_folds) {
+      counts.gave_up = true;
+      break;
     }
     if(accepted_t == 0.) {
       // No acceptable step: the paper's local Newton sweeps (which keep every positive triangle positive) move
@@ -100,11 +128,14 @@ inline Iteration_report mobius_newton(Sphere_state& state, const Iteration_optio
       break;
     }
     short_steps = accepted_t >= 0.25 ? 0 : short_steps + 1;
-    if(short_steps >= patience) { counts.gave_up = true; break; }
+    if(!allow_folds && short_steps >= patience) { counts.gave_up = true; break; }
+    // Full steps that lower Res forever without balancing any vertex: a drift towards collapse.
+    history.push_back(convergence_measure(system, x, residual, options));
+    if(history.size() > 50 && history.back() > 0.99 * history[history.size() - 51]) { counts.gave_up = true; break; }
   }
   // A collapse onto a great circle can pass the orientation test with a small residual; the areas expose it,
   // and then none of these iterates is trusted.
-  if(!counts.gave_up && residual < options.tolerance && state.invalid_faces() == 0 && !certify(system.triangles, x).bijective) {
+  if(!counts.gave_up && has_converged(system, x, residual, state.invalid_faces(), options) && !certify(system.triangles, x).bijective) {
     counts.gave_up = true;
     best = start;
   }
@@ -113,7 +144,7 @@ inline Iteration_report mobius_newton(Sphere_state& state, const Iteration_optio
     residual = compute_residuals(system, x).paper;
   }
   report.residual = residual;
-  report.converged = residual < options.tolerance && state.invalid_faces() == 0;
+  report.converged = has_converged(system, x, residual, state.invalid_faces(), options);
   report.stagnated = counts.gave_up;
   if(statistics != nullptr) *statistics = counts;
   return report;

@@ -25,6 +25,7 @@ namespace internal {
 
 struct Iteration_options {
   double tolerance = 1e-6;
+  Convergence_test convergence_test = Convergence_test::IMBALANCE;
   std::size_t max_gauss_seidel_sweeps = 1000;
   std::size_t max_newton_sweeps = 200000;
   double max_seconds = -1.;           // negative: no budget
@@ -166,6 +167,25 @@ private:
   std::size_t invalid_faces_ = 0;
 };
 
+// The stopping test of every solver: no non-positive face, and every vertex balanced in its own scale (or the
+// paper's Res below the tolerance, when that test was chosen).
+inline bool has_converged(const Sphere_system& system, const std::vector<Vector3>& x, double residual,
+                          std::size_t invalid_faces, const Iteration_options& options)
+{
+  if(invalid_faces != 0) return false;
+  if(options.convergence_test == Convergence_test::PAPER_RESIDUAL) return residual < options.tolerance;
+  return summarize_imbalance(system, x, options.tolerance).balanced();
+}
+
+// What the stagnation rules watch: the quantity the convergence test bounds (the worst imbalance over its allowed
+// value, or Res). Res alone keeps falling on a map that drifts towards collapse while no vertex gets balanced.
+inline double convergence_measure(const Sphere_system& system, const std::vector<Vector3>& x, double residual,
+                                  const Iteration_options& options)
+{
+  if(options.convergence_test == Convergence_test::PAPER_RESIDUAL) return residual;
+  return summarize_imbalance(system, x, options.tolerance).worst_ratio;
+}
+
 class Stopwatch {
 public:
   Stopwatch() : start_(std::chrono::steady_clock::now()) {}
@@ -203,7 +223,7 @@ inline Iteration_report projected_gauss_seidel(Sphere_state& state, const Iterat
       break;
     }
     residual = next;
-    if(residual < options.tolerance && state.invalid_faces() == 0) { report.converged = true; break; }
+    if(has_converged(system, x, residual, state.invalid_faces(), options)) { report.converged = true; break; }
     if(report.cancelled) break;
   }
   report.residual = residual;
@@ -280,7 +300,7 @@ inline Iteration_report local_newton(Sphere_state& state, const Iteration_option
   const Sphere_system& system = state.system();
   double residual = state.refresh_sums();
   std::vector<double> history;
-  while(!(residual < options.tolerance && state.invalid_faces() == 0)) {
+  while(!has_converged(system, state.positions(), residual, state.invalid_faces(), options)) {
     if(report.sweeps >= options.max_newton_sweeps) break;
     if(options.max_seconds >= 0. && clock.seconds() > options.max_seconds) { report.out_of_time = true; break; }
     std::size_t moved = 0;
@@ -295,14 +315,14 @@ inline Iteration_report local_newton(Sphere_state& state, const Iteration_option
       break;
     }
     // Stagnation: no vertex moved, or 1000 sweeps gained less than 1% in all.
-    history.push_back(residual);
-    if(moved == 0 || (history.size() > 1000 && residual > 0.99 * history[history.size() - 1001])) {
+    history.push_back(convergence_measure(system, state.positions(), residual, options));
+    if(moved == 0 || (history.size() > 1000 && history.back() > 0.99 * history[history.size() - 1001])) {
       report.stagnated = true;
       break;
     }
   }
   report.residual = residual;
-  report.converged = residual < options.tolerance && state.invalid_faces() == 0;
+  report.converged = has_converged(system, state.positions(), residual, state.invalid_faces(), options);
   return report;
 }
 

@@ -127,9 +127,13 @@ public:
       rhs_[unknown(i, 0)] = -dot(t1_[i], force);
       rhs_[unknown(i, 1)] = -dot(t2_[i], force);
     }
-    fix_unknown(0, 0);
-    fix_unknown(0, 1);
-    if(has_gauge) fix_unknown(g, 0);
+    // The right-hand sides of the three equations the gauge drops, kept for solve().
+    pinned_rows_.clear();
+    pinned_rows_.push_back({0, 0, rhs_[unknown(0, 0)]});
+    pinned_rows_.push_back({0, 1, rhs_[unknown(0, 1)]});
+    if(has_gauge) pinned_rows_.push_back({g, 0, rhs_[unknown(g, 0)]});
+    for(const Pinned_row& row : pinned_rows_) fix_unknown(row.vertex, row.component);
+    x_ = &x;
 
     if(!analyzed_) {
       ldlt_.analyzePattern(matrix_);
@@ -140,18 +144,86 @@ public:
   }
 
   // Newton's step as tangent vectors; false when it is not finite.
-  bool solve(std::vector<Vector3>& step)
+  //
+  // Away from the solution the linearized equations J d = -F are inconsistent along the rotations: the torque
+  // identity sum_i x_i x F_i = 0 holds for every x, so its linearization leaves sum_i d_i x F_i in the three equations
+  // the gauge drops, all of it at two vertices. That would make the step ascend there. Instead the step solves
+  // J d = -F - R mu, with R mu the infinitesimal rotation field mu x x_i (smooth, spread over every vertex, and
+  // orthogonal to F by the same identity, so the step still descends on sum |F_i|^2), mu chosen so that the dropped
+  // equations hold too: three more back-substitutions with the same factorization. `consistent_rotations`: false
+  // keeps the plain gauge, whose steps the weight continuation was tuned with (with the correction it stalls on
+  // cow's admissible cotangent weights).
+  bool solve(std::vector<Vector3>& step, bool consistent_rotations = true)
   {
-    const Eigen::VectorXd solution = ldlt_.solve(rhs_);
-    if(ldlt_.info() != Eigen::Success || !solution.allFinite()) return false;
     const std::size_t n = system_.number_of_vertices;
+    Eigen::VectorXd solution = ldlt_.solve(rhs_);
+    if(ldlt_.info() != Eigen::Success || !solution.allFinite()) return false;
+    const std::size_t m = pinned_rows_.size();
+    Eigen::Vector3d mismatch = Eigen::Vector3d::Zero(), dropped_rhs = Eigen::Vector3d::Zero();
+    if(m == 3 && x_ != nullptr)
+      for(std::size_t r = 0; r < 3; ++r) {
+        mismatch[static_cast<Eigen::Index>(r)] = dropped_equation_residual(r, solution, pinned_rows_[r].rhs);
+        dropped_rhs[static_cast<Eigen::Index>(r)] = pinned_rows_[r].rhs;
+      }
+    // Only where the dropped equations would end worse than they start (far from the solution: the mismatch is of
+    // second order); near it the correction, a response to a field close to the Jacobian's null space, only adds
+    // rounding and spoils the quadratic convergence.
+    if(consistent_rotations && m == 3 && x_ != nullptr && mismatch.norm() > dropped_rhs.norm()) {
+      const std::vector<Vector3>& x = *x_;
+      const Vector3 axis[3] = {Vector3(1, 0, 0), Vector3(0, 1, 0), Vector3(0, 0, 1)};
+      Eigen::Matrix<double, Eigen::Dynamic, 3> rotation_solutions(solution.size(), 3);
+      Eigen::Matrix3d coupling;
+      for(int k = 0; k < 3; ++k) {
+        Eigen::VectorXd field(solution.size());
+        for(std::size_t i = 0; i < n; ++i) {
+          const Vector3 f = cross(axis[k], x[i]);
+          field[unknown(i, 0)] = -dot(t1_[i], f);
+          field[unknown(i, 1)] = -dot(t2_[i], f);
+        }
+        std::vector<double> field_rows(3);
+        for(std::size_t r = 0; r < 3; ++r) {
+          field_rows[r] = field[unknown(pinned_rows_[r].vertex, pinned_rows_[r].component)];
+          field[unknown(pinned_rows_[r].vertex, pinned_rows_[r].component)] = 0.;
+        }
+        rotation_solutions.col(k) = ldlt_.solve(field);
+        for(std::size_t r = 0; r < 3; ++r)
+          coupling(static_cast<Eigen::Index>(r), k) = dropped_equation_residual(r, rotation_solutions.col(k), field_rows[r]);
+      }
+      const Eigen::Vector3d mu = coupling.fullPivLu().solve(-mismatch);
+      if(mu.allFinite() && rotation_solutions.allFinite()) solution += rotation_solutions * mu;
+    }
     step.resize(n);
     for(std::size_t i = 0; i < n; ++i) step[i] = solution[unknown(i, 0)] * t1_[i] + solution[unknown(i, 1)] * t2_[i];
     return true;
   }
 
 private:
+  struct Pinned_row {
+    std::size_t vertex;
+    int component;
+    double rhs;  // -F of that equation
+  };
+
   Eigen::Index unknown(std::size_t i, int component) const { return 2 * static_cast<Eigen::Index>(rank_[i]) + component; }
+
+  // (J d)_row - rhs for the r-th dropped equation, with the full (ungauged) Jacobian row.
+  template <typename Vector>
+  double dropped_equation_residual(std::size_t r, const Vector& d, double rhs) const
+  {
+    const std::vector<Vector3>& x = *x_;
+    const std::size_t v = pinned_rows_[r].vertex;
+    const Vector3& t = pinned_rows_[r].component == 0 ? t1_[v] : t2_[v];
+    Vector3 pull;
+    double alpha = 0.;
+    for(std::size_t k = system_.offsets[v]; k < system_.offsets[v + 1]; ++k) {
+      const std::size_t j = static_cast<std::size_t>(system_.neighbors[k]);
+      const double w = system_.weights[k] * system_.row_sums[v];
+      pull += w * (d[unknown(j, 0)] * t1_[j] + d[unknown(j, 1)] * t2_[j]);
+      alpha += w * (1. - 0.5 * squared_length(x[j] - x[v]));
+    }
+    const double own = pinned_rows_[r].component == 0 ? d[unknown(v, 0)] : d[unknown(v, 1)];
+    return dot(t, pull) - alpha * own - rhs;
+  }
 
   // The upper triangle of the 2x2-block pattern in elimination order, and where every block's values sit.
   void build_pattern()
@@ -220,6 +292,8 @@ private:
   std::vector<std::array<std::size_t, 4>> block_slots_;
   std::vector<Vector3> t1_, t2_;
   Eigen::VectorXd rhs_;
+  std::vector<Pinned_row> pinned_rows_;
+  const std::vector<Vector3>* x_ = nullptr;  // the positions of the last factorize()
   bool analyzed_ = false;
   Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>, Eigen::Upper, Eigen::NaturalOrdering<int>> ldlt_;
 };

@@ -43,8 +43,7 @@ inline void blend_with_tutte(const Sphere_system& target, double s, Sphere_syste
   blend.symmetric = true;
 }
 
-// Each solution along the path is computed to `path_tolerance` (the paper's Res); the last one, of the target
-// weights, to the caller's tolerance. On failure x holds the solution at report.last_parameter (or, if even
+// Each solution along the path is computed to the caller's test (to `path_tolerance` when that is the paper's Res). On failure x holds the solution at report.last_parameter (or, if even
 // Tutte's weights failed, whatever Newton's best iterate was).
 inline Continuation_report weight_continuation(const Sphere_system& target, std::vector<Vector3>& x,
                                                const Iteration_options& options, const Stopwatch& clock,
@@ -57,7 +56,8 @@ inline Continuation_report weight_continuation(const Sphere_system& target, std:
   Continuation_report report;
   Sphere_system blend = target;
   Iteration_options path = options;
-  path.tolerance = std::min(options.tolerance, path_tolerance);
+  // The imbalance is scale-free; the paper's Res needs to be far below the tolerance for a good start.
+  if(options.convergence_test == Convergence_test::PAPER_RESIDUAL) path.tolerance = std::min(options.tolerance, path_tolerance);
   std::vector<Vector3> saved;
   auto solve_at = [&](double s) {
     blend_with_tutte(target, s, blend);
