@@ -151,24 +151,19 @@ public:
   // J d = -F - R mu, with R mu the infinitesimal rotation field mu x x_i (smooth, spread over every vertex, and
   // orthogonal to F by the same identity, so the step still descends on sum |F_i|^2), mu chosen so that the dropped
   // equations hold too: three more back-substitutions with the same factorization. `consistent_rotations`: false
-  // keeps the plain gauge, whose steps the weight continuation was tuned with (with the correction it stalls on
-  // cow's admissible cotangent weights).
+  // keeps the plain gauge, whose steps the bijectivity-preserving Newton and the weight continuation were tuned
+  // with (with the correction the continuation stalls on cow's admissible cotangent weights, and Res no longer
+  // falls quadratically at the end: unit tests).
   bool solve(std::vector<Vector3>& step, bool consistent_rotations = true)
   {
     const std::size_t n = system_.number_of_vertices;
     Eigen::VectorXd solution = ldlt_.solve(rhs_);
     if(ldlt_.info() != Eigen::Success || !solution.allFinite()) return false;
     const std::size_t m = pinned_rows_.size();
-    Eigen::Vector3d mismatch = Eigen::Vector3d::Zero(), dropped_rhs = Eigen::Vector3d::Zero();
-    if(m == 3 && x_ != nullptr)
-      for(std::size_t r = 0; r < 3; ++r) {
+    if(consistent_rotations && m == 3 && x_ != nullptr) {
+      Eigen::Vector3d mismatch;
+      for(std::size_t r = 0; r < 3; ++r)
         mismatch[static_cast<Eigen::Index>(r)] = dropped_equation_residual(r, solution, pinned_rows_[r].rhs);
-        dropped_rhs[static_cast<Eigen::Index>(r)] = pinned_rows_[r].rhs;
-      }
-    // Only where the dropped equations would end worse than they start (far from the solution: the mismatch is of
-    // second order); near it the correction, a response to a field close to the Jacobian's null space, only adds
-    // rounding and spoils the quadratic convergence.
-    if(consistent_rotations && m == 3 && x_ != nullptr && mismatch.norm() > dropped_rhs.norm()) {
       const std::vector<Vector3>& x = *x_;
       const Vector3 axis[3] = {Vector3(1, 0, 0), Vector3(0, 1, 0), Vector3(0, 0, 1)};
       Eigen::Matrix<double, Eigen::Dynamic, 3> rotation_solutions(solution.size(), 3);
