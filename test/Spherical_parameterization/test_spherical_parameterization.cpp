@@ -403,6 +403,42 @@ TEST(LocalNewton, EachStepLowersTheEnergy)
   EXPECT_EQ(state.invalid_faces(), 0u);
 }
 
+// The imbalance is scale-free and zero exactly when balanced: the regular octahedron is balanced; moving one
+// vertex unbalances it and its neighbours; a ring shrunk by 1e-12 around a pole is held to its rounding floor.
+TEST(Imbalance, ScaleFreeWithARoundingFloor)
+{
+  const SPI::Mesh_arrays arrays = arrays_of(to_mesh(octahedron()));
+  const SPI::Sphere_system system = system_of(arrays);
+  std::vector<SPI::Vector3> x = arrays.points;
+  SPI::Imbalance_summary balanced = SPI::summarize_imbalance(system, x, 1e-6);
+  EXPECT_LT(balanced.max, 1e-15);
+  EXPECT_TRUE(balanced.balanced());
+  EXPECT_EQ(balanced.vertices_at_rounding_floor, 0u);
+  x[4] = SPI::Vector3(0.1, 0., 1.);
+  x[4] *= 1. / SPI::length(x[4]);
+  const SPI::Imbalance_summary moved = SPI::summarize_imbalance(system, x, 1e-6);
+  EXPECT_GT(moved.max, 1e-3);
+  EXPECT_FALSE(moved.balanced());
+  EXPECT_GE(moved.unbalanced_vertices, 3u);  // the moved vertex and the neighbours it pulls off balance
+  // Scale-free: the same relative displacement at 1e-6 of the size gives the same e.
+  auto ring_at = [&](double scale, double offset) {
+    std::vector<SPI::Vector3> y = arrays.points;
+    for(int v : {0, 1, 2, 3}) {
+      SPI::Vector3 p(scale * arrays.points[std::size_t(v)].x, scale * arrays.points[std::size_t(v)].y, 1.);
+      y[std::size_t(v)] = p * (1. / SPI::length(p));
+    }
+    y[4] = SPI::Vector3(offset * scale, 0., 1.);
+    y[4] *= 1. / SPI::length(y[4]);
+    return SPI::vertex_imbalance(system, y, 4);
+  };
+  EXPECT_NEAR(ring_at(1e-4, 0.1).imbalance, ring_at(1e-10, 0.1).imbalance, 1e-6);
+  EXPECT_GT(ring_at(1e-10, 0.1).imbalance, 1e-2);
+  // Below about 2e-9 the floor exceeds 1e-6, and a balanced ring is within it.
+  const SPI::Vertex_imbalance tiny = ring_at(1e-12, 0.);
+  EXPECT_GT(tiny.rounding_floor, 1e-6);
+  EXPECT_LE(tiny.imbalance, tiny.rounding_floor);
+}
+
 TEST(GlobalNewton, LowersTheResidualAndKeepsEveryTrianglePositive)
 {
   const SPI::Mesh_arrays arrays = arrays_of(read_mesh(shared_meshes + "/trimesh_fuze.off"));

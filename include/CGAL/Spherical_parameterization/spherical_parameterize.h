@@ -253,7 +253,8 @@ Result run_pipeline(const Mesh_arrays& mesh, Sphere_system& system, const Pipeli
   result.flipped_faces = certificate.flipped_faces;
   result.total_signed_area = certificate.total_signed_area;
   result.bijective = certificate.bijective;
-  const Imbalance_summary imbalance = summarize_imbalance(system, x, options.iterations.tolerance);
+  std::vector<double> imbalances;
+  const Imbalance_summary imbalance = summarize_imbalance(system, x, options.iterations.tolerance, &imbalances);
   result.max_imbalance = imbalance.max;
   result.imbalance_percentile_99 = imbalance.percentile_99;
   result.vertices_at_rounding_floor = imbalance.vertices_at_rounding_floor;

@@ -321,33 +321,32 @@ inline Vertex_imbalance vertex_imbalance(const Sphere_system& system, const std:
 
 struct Imbalance_summary {
   double max = 0.;                          // max_i e_i
-  double percentile_99 = 0.;                // the 99th percentile of e_i
+  double percentile_99 = 0.;                // the 99th percentile of e_i (when the values were asked for)
   double worst_ratio = 0.;                  // max_i e_i / max(tolerance, rounding_floor_i): <= 1 when balanced
   std::size_t unbalanced_vertices = 0;      // e_i > max(tolerance, rounding_floor_i)
   std::size_t vertices_at_rounding_floor = 0; // rounding_floor_i > tolerance: tested against their floor
   bool balanced() const { return unbalanced_vertices == 0; }
 };
 
-// The imbalance of every vertex against `tolerance`; `values` (optional) receives e_i.
+// The imbalance of every vertex against `tolerance`. `values` (optional) receives e_i; the percentile is computed
+// only then, so that the stopping tests of the iterations allocate nothing.
 inline Imbalance_summary summarize_imbalance(const Sphere_system& system, const std::vector<Vector3>& x, double tolerance,
                                              std::vector<double>* values = nullptr)
 {
   const std::size_t n = system.number_of_vertices;
-  std::vector<double> local;
-  std::vector<double>& e = values != nullptr ? *values : local;
-  e.resize(n);
+  if(values != nullptr) values->resize(n);
   Imbalance_summary summary;
   for(std::size_t i = 0; i < n; ++i) {
     const Vertex_imbalance v = vertex_imbalance(system, x, i);
-    e[i] = v.imbalance;
+    if(values != nullptr) (*values)[i] = v.imbalance;
     const double allowed = std::max(tolerance, v.rounding_floor);
     summary.max = std::max(summary.max, v.imbalance);
     summary.worst_ratio = std::max(summary.worst_ratio, allowed > 0. ? v.imbalance / allowed : (v.imbalance > 0. ? HUGE_VAL : 0.));
     summary.unbalanced_vertices += !(v.imbalance <= allowed);
     summary.vertices_at_rounding_floor += v.rounding_floor > tolerance;
   }
-  if(n > 0) {
-    std::vector<double> sorted(e);
+  if(n > 0 && values != nullptr) {
+    std::vector<double> sorted(*values);
     const std::size_t rank = std::min(n - 1, static_cast<std::size_t>(std::ceil(0.99 * static_cast<double>(n))) - 1);
     std::nth_element(sorted.begin(), sorted.begin() + static_cast<std::ptrdiff_t>(rank), sorted.end());
     summary.percentile_99 = sorted[rank];
