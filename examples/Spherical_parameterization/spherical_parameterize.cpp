@@ -105,7 +105,7 @@ void print_usage(std::ostream& out)
          "  max_tangential_residual, flipped_faces, total_signed_area, bijective, initial_flipped_faces,\n"
          "  uniform_initial_guess_fallback, admissible_weights, raised_weights, clamped_weights, rejected_moves,\n"
          "  separator_size, cut_loop_length,\n"
-         "  stages.{initial_guess,gauss_seidel,newton}.{seconds,iterations,residual},\n"
+         "  stages.{initial_guess,gauss_seidel,newton}.{seconds,iterations,linear_iterations,residual},\n"
          "  seconds.{read,map,write,total}.\n"
          "\n"
          "Exit status: 0 success (converged and certified bijective); 1 not converged or not bijective (the\n"
@@ -275,6 +275,7 @@ void print_json(std::ostream& out, const SP::Result& r, const Run_figures& run)
   const bool computed = r.residual >= 0.;  // the iterations ran (not an input or set-up error)
   auto stage = [](const SP::Stage_statistics& s) {
     return "{\"seconds\": " + json_number(s.seconds) + ", \"iterations\": " + json_count(s.iterations) +
+           ", \"linear_iterations\": " + json_count(s.linear_iterations) +
            ", \"residual\": " + json_number(s.residual, s.residual >= 0.) + "}";
   };
   out << "{\n"
@@ -339,7 +340,9 @@ void print_text(std::ostream& out, const SP::Result& r, const Run_figures& run)
       << (r.uniform_initial_guess_fallback ? ", uniform-weight disks" : "") << "\n"
       << "stage 2:         projected Gauss-Seidel, " << r.gauss_seidel.seconds << " s, "
       << plural(r.gauss_seidel.iterations, "sweep") << ", Res " << r.gauss_seidel.residual << "\n"
-      << "stage 3:         Newton, " << r.newton.seconds << " s, " << plural(r.newton.iterations, "iteration") << ", Res "
+      << "stage 3:         Newton, " << r.newton.seconds << " s, " << plural(r.newton.iterations, "iteration")
+      << (r.newton.linear_iterations > 0 ? " (" + plural(r.newton.linear_iterations, "MINRES iteration") + ")" : std::string())
+      << ", Res "
       << r.newton.residual << ", " << plural(r.rejected_moves, "move") << " not taken (stages 2 and 3)\n"
       << "time:            " << run.total_seconds << " s (read " << run.read_seconds << " s, map " << run.map_seconds
       << " s, write " << run.write_seconds << " s)\n";

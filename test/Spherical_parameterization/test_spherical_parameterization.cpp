@@ -527,6 +527,56 @@ TEST(GlobalNewton, MobiusNewtonConvergesQuadratically)
   }
 }
 
+// MINRES on a symmetric indefinite matrix (a path Laplacian shifted so that a few eigenvalues are negative) with a
+// positive definite preconditioner (the inverse diagonal of the unshifted Laplacian): the true residual is small.
+TEST(NewtonKrylov, MinresSolvesAnIndefiniteSystem)
+{
+  const int n = 400;
+  const double shift = 0.05;  // eigenvalues 2 - 2 cos(k pi / (n + 1)) - shift: about 29 of them negative
+  auto apply = [&](const double* in, double* out) {
+    for(int i = 0; i < n; ++i) out[i] = (2. - shift) * in[i] - (i > 0 ? in[i - 1] : 0.) - (i + 1 < n ? in[i + 1] : 0.);
+  };
+  auto jacobi = [&](const double* in, double* out) { for(int i = 0; i < n; ++i) out[i] = in[i] / 2.; };
+  std::vector<double> b(n), x(n), r(n);
+  for(int i = 0; i < n; ++i) b[i] = std::sin(0.1 * i) + (i % 7 == 0 ? 1. : 0.);
+  SPI::AMG::Krylov_workspace workspace;
+  const SPI::AMG::Krylov_result result = SPI::AMG::minres(apply, jacobi, b.data(), x.data(), n, 1e-10, 2000, workspace);
+  EXPECT_TRUE(result.converged);
+  apply(x.data(), r.data());
+  double error = 0., norm_b = 0.;
+  for(int i = 0; i < n; ++i) { error += (r[i] - b[i]) * (r[i] - b[i]); norm_b += b[i] * b[i]; }
+  EXPECT_LT(std::sqrt(error / norm_b), 1e-8);
+}
+
+// Newton's full steps with the iterative linear solver (a mesh above iterative_newton_min_vertices): they reach the
+// imbalance test from the initial guess, each linear solve takes a handful of MINRES iterations (the multigrid
+// preconditioner works), and the last steps converge fast.
+TEST(NewtonKrylov, FullStepsConvergeWithFewMinresIterations)
+{
+  const SPI::Mesh_arrays arrays = arrays_of(read_mesh(shared_meshes + "/gary_david.off"));
+  const SPI::Sphere_system system = system_of(arrays);
+  ASSERT_GE(system.number_of_vertices, SPI::iterative_newton_min_vertices);
+  std::vector<SPI::Vector3> x = initial_sphere_of(arrays, system);
+  SPI::Sphere_state state(system, x);
+  SPI::Iteration_options options;
+  std::vector<double> imbalance;
+  options.progress = [&](const char*, std::size_t, double, std::size_t) {
+    imbalance.push_back(SPI::summarize_imbalance(system, x, options.tolerance).max);
+    return true;
+  };
+  const SPI::Iteration_report report = SPI::mobius_newton(state, options, SPI::Stopwatch(), nullptr, SPI::free_newton_patience, true);
+  ASSERT_TRUE(report.converged);
+  EXPECT_GT(report.linear_iterations, 0u);
+  EXPECT_LE(report.linear_iterations, 25 * report.sweeps);
+  EXPECT_TRUE(SPI::certify(system.triangles, x).bijective);
+  EXPECT_LE(SPI::summarize_imbalance(system, x, options.tolerance).max, 1e-6);
+  // Superlinear at the end: the imbalance falls by at least 100 times in each of the last two steps.
+  ASSERT_GE(imbalance.size(), 3u);
+  const std::size_t m = imbalance.size();
+  EXPECT_LT(imbalance[m - 1], 1e-2 * imbalance[m - 2]);
+  EXPECT_LT(imbalance[m - 2], 1e-2 * imbalance[m - 3]);
+}
+
 // Cotangent weights made admissible (symmetric, positive) on cow: Newton alone gives up, the continuation from
 // Tutte's weights reaches their solution. Plain cotangent weights on triceratops: the path of solutions ends early.
 TEST(GlobalNewton, ContinuationFromTutteWeights)

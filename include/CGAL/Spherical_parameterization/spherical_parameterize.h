@@ -237,6 +237,7 @@ Result run_pipeline(const Mesh_arrays& mesh, Sphere_system& system, const Pipeli
   else newton.residual = gauss_seidel.residual;
   cancelled = cancelled || newton.cancelled;
   result.newton.iterations = newton.sweeps + direct_newton.sweeps;
+  result.newton.linear_iterations = newton.linear_iterations + direct_newton.linear_iterations;
   result.newton.residual = direct_done ? direct_newton.residual : newton.residual;
   result.newton.seconds = stage.seconds() + direct_seconds;
   result.rejected_moves = gauss_seidel.rejected_moves + newton.rejected_moves;

@@ -281,6 +281,7 @@ inline Iteration_report global_newton(Sphere_state& state, const Iteration_optio
   remaining_options.max_newton_sweeps = options.max_newton_sweeps > free_steps.sweeps ? options.max_newton_sweeps - free_steps.sweeps : 0;
   Iteration_report report = mobius_newton(state, remaining_options, clock, &statistics);
   report.sweeps += free_steps.sweeps;
+  report.linear_iterations += free_steps.linear_iterations;
   if(!statistics.gave_up) return report;
   if(!has_tutte_weights(system)) {
     const std::vector<Vector3> start = state.positions();
@@ -302,6 +303,7 @@ inline Iteration_report global_newton(Sphere_state& state, const Iteration_optio
   Iteration_report cautious = cautious_newton(state, remaining, clock);
   cautious.sweeps += report.sweeps;
   cautious.rejected_moves += report.rejected_moves;
+  cautious.linear_iterations += report.linear_iterations;
   cautious.continuation_parameter = report.continuation_parameter;
   return cautious;
 }

@@ -42,6 +42,7 @@ struct Iteration_report {
   bool stagnated = false;       // the residual stopped decreasing before the tolerance
   bool cancelled = false;       // the progress callback asked to stop
   std::size_t rejected_moves = 0;
+  std::size_t linear_iterations = 0;    // iterations of the iterative linear solver (MINRES), if one ran
   double continuation_parameter = -1.;  // how far the continuation from Tutte's weights got (-1: not tried)
 };
 

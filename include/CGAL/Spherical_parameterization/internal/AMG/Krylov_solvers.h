@@ -292,6 +292,90 @@ Krylov_result gmres(const Compressed_row_matrix& A, const double* b, double* x,
   }
 }
 
+// Preconditioned MINRES (Paige and Saunders, 1975) for a symmetric, possibly indefinite operator with a symmetric
+// positive definite preconditioner, matrix-free: apply_operator(in, out) and apply_preconditioner(in, out) on arrays
+// of n values. Starts from x = 0 and stops when the preconditioned residual norm sqrt(r^T M^{-1} r) falls to
+// relative_tolerance times its initial value (a monotone estimate that MINRES updates for free).
+template <class Operator, class Preconditioner>
+Krylov_result minres(Operator& apply_operator, Preconditioner& apply_preconditioner, const double* b, double* x,
+                     Index n, double relative_tolerance, int max_iterations, Krylov_workspace& workspace)
+{
+  double* r1 = workspace.vector(0, n);
+  double* r2 = workspace.vector(1, n);
+  double* y = workspace.vector(2, n);
+  double* v = workspace.vector(3, n);
+  double* w = workspace.vector(4, n);
+  double* w1 = workspace.vector(5, n);
+  double* w2 = workspace.vector(6, n);
+  Krylov_result result;
+  std::fill(x, x + n, 0.);
+  std::fill(w, w + n, 0.);
+  std::fill(w2, w2 + n, 0.);
+  std::copy(b, b + n, r1);
+  std::copy(b, b + n, r2);
+  apply_preconditioner(r1, y);
+  double beta1 = dot(r1, y, n);
+  if(!(beta1 >= 0.) || !std::isfinite(beta1))
+    return result;
+  beta1 = std::sqrt(beta1);
+  if(beta1 == 0.)
+  {
+    result.converged = true;
+    return result;
+  }
+  double old_beta = 0., beta = beta1, dbar = 0., epsilon = 0., phibar = beta1, cs = -1., sn = 0.;
+  while(result.iterations < max_iterations)
+  {
+    ++result.iterations;
+    const double s = 1. / beta;
+    for(Index i = 0; i < n; ++i)
+      v[i] = s * y[i];
+    apply_operator(v, y);
+    if(result.iterations >= 2)
+    {
+      const double c = beta / old_beta;
+      for(Index i = 0; i < n; ++i)
+        y[i] -= c * r1[i];
+    }
+    const double alpha = dot(v, y, n);
+    const double c = alpha / beta;
+    for(Index i = 0; i < n; ++i)
+      y[i] -= c * r2[i];
+    std::swap(r1, r2);
+    std::copy(y, y + n, r2);
+    apply_preconditioner(r2, y);
+    old_beta = beta;
+    beta = dot(r2, y, n);
+    if(!(beta >= 0.) || !std::isfinite(beta))
+      return result;
+    beta = std::sqrt(beta);
+    const double old_epsilon = epsilon;
+    const double delta = cs * dbar + sn * alpha;
+    const double gbar = sn * dbar - cs * alpha;
+    epsilon = sn * beta;
+    dbar = -cs * beta;
+    const double gamma = std::max(std::hypot(gbar, beta), 1e-300);
+    cs = gbar / gamma;
+    sn = beta / gamma;
+    const double phi = cs * phibar;
+    phibar *= sn;
+    std::swap(w1, w2);
+    std::swap(w2, w);
+    for(Index i = 0; i < n; ++i)
+    {
+      w[i] = (v[i] - old_epsilon * w1[i] - delta * w2[i]) / gamma;
+      x[i] += phi * w[i];
+    }
+    result.relative_residual = phibar / beta1;
+    if(result.relative_residual <= relative_tolerance || beta == 0.)
+    {
+      result.converged = true;
+      return result;
+    }
+  }
+  return result;
+}
+
 } // namespace AMG
 } // namespace internal
 } // namespace Spherical_parameterization
