@@ -18,6 +18,7 @@
 #include <unistd.h>
 
 #include <algorithm>
+#include <atomic>
 #include <cerrno>
 #include <chrono>
 #include <cmath>
@@ -36,6 +37,8 @@
 #include <thread>
 #include <vector>
 
+#include <pthread.h>
+#include <signal.h>
 #include <sys/stat.h>
 #include <unistd.h>
 
@@ -46,7 +49,7 @@ using Mesh = CGAL::Surface_mesh<Point>;
 
 namespace {
 
-enum Exit_code { EXIT_OK = 0, EXIT_NOT_SOLVED = 1, EXIT_BAD_INPUT = 2, EXIT_IO = 3, EXIT_USAGE = 4, EXIT_INTERRUPTED = 130 };
+enum Exit_code { EXIT_OK = 0, EXIT_NOT_SOLVED = 1, EXIT_BAD_INPUT = 2, EXIT_IO = 3, EXIT_USAGE = 4 };
 
 const char* const synopsis = "Usage: spherical_parameterize INPUT [-o OUTPUT] [options]\n";
 
@@ -90,7 +93,9 @@ void print_usage(std::ostream& out)
          "  -h, --help            this text\n"
          "Progress goes to stderr once a run takes more than a second: stage, iteration, Res, non-positive\n"
          "faces, elapsed time; on a terminal as one line rewritten in place, otherwise at most a line a second.\n"
-         "Ctrl-C stops the iterations and writes the best map so far (exit 1); a second Ctrl-C quits at once.\n"
+         "Ctrl-C, SIGTERM or SIGHUP (job schedulers, timeout) during the iterations stops them and writes the\n"
+         "best map so far (exit 1); before the iterations it ends the run at once (nothing written); a second\n"
+         "signal quits at once. The output file is only ever replaced whole.\n"
          "Options also take the form --option=VALUE.\n"
          "\n"
          "Examples:\n"
@@ -110,19 +115,71 @@ void print_usage(std::ostream& out)
          "\n"
          "Exit status: 0 success (converged and certified bijective); 1 not converged or not bijective (the\n"
          "best map found is written); 2 invalid mesh (nothing written); 3 file error; 4 usage error;\n"
-         "130 interrupted before the iterations.\n";
+         "128 + the signal's number (130 Ctrl-C, 143 SIGTERM, 129 SIGHUP) stopped before the iterations or\n"
+         "by a second signal (nothing written).\n";
 }
 
 using Clock = std::chrono::steady_clock;
 
 double seconds_since(Clock::time_point start) { return std::chrono::duration<double>(Clock::now() - start).count(); }
 
-// Ctrl-C: the first one asks the iterations to stop (the best map is written), the second one kills.
-volatile std::sig_atomic_t interrupted = 0;
-extern "C" void on_interrupt(int)
+// Stop signals (Ctrl-C's SIGINT, SIGTERM from job schedulers and `timeout`, SIGHUP) are blocked in every thread and
+// taken by one watcher thread with sigwait(), so that no library call can swallow one (METIS traps SIGTERM while it
+// runs) and no handler runs in a thread that does not expect it. Before the iterations there is nothing to keep: the
+// process ends at once (nothing written, exit 128 + signal). During the iterations the first signal asks them to
+// stop and the best map is written (exit 1); during the writing it lets the writing finish. A second signal ends
+// the process at once, removing the temporary file of a writing under way (the output itself is only ever replaced
+// whole, by a rename).
+enum Run_phase { SETTING_UP, ITERATING, WRITING };
+std::atomic<int> stop_signal{0};
+std::atomic<int> run_phase{SETTING_UP};
+std::mutex temporary_file_mutex;
+std::string temporary_file;  // the file being written, if any
+
+const char* signal_name(int signal)
 {
-  interrupted = 1;
-  std::signal(SIGINT, SIG_DFL);
+  switch(signal) {
+    case SIGINT: return "Ctrl-C";
+    case SIGTERM: return "SIGTERM";
+    case SIGHUP: return "SIGHUP";
+    default: return "signal";
+  }
+}
+
+[[noreturn]] void end_now(int signal, const char* why)
+{
+  {
+    std::lock_guard<std::mutex> lock(temporary_file_mutex);
+    if(!temporary_file.empty()) std::remove(temporary_file.c_str());
+  }
+  std::fprintf(stderr, "\n%s (%s): nothing written\n", why, signal_name(signal));
+  std::_Exit(128 + signal);
+}
+
+void start_signal_watcher()
+{
+  sigset_t stop;
+  sigemptyset(&stop);
+  sigaddset(&stop, SIGINT);
+  sigaddset(&stop, SIGTERM);
+  sigaddset(&stop, SIGHUP);
+  // Every thread created after this line (the progress ticker, TBB's workers) inherits the blocked set.
+  pthread_sigmask(SIG_BLOCK, &stop, nullptr);
+  // A shell starts background jobs with SIGINT ignored, and an ignored signal is discarded: a handler that is never
+  // called (the signals stay blocked) keeps them coming to sigwait().
+  struct sigaction keep = {};
+  keep.sa_handler = [](int) {};
+  sigemptyset(&keep.sa_mask);
+  for(int signal : {SIGINT, SIGTERM, SIGHUP}) sigaction(signal, &keep, nullptr);
+  std::thread([stop] {
+    while(true) {
+      int signal = 0;
+      if(sigwait(&stop, &signal) != 0) continue;
+      if(stop_signal.load() != 0) end_now(signal, "stopped again");
+      stop_signal = signal;
+      if(run_phase.load() == SETTING_UP) end_now(signal, "interrupted before the iterations");
+    }
+  }).detach();
 }
 
 // The progress line on stderr: rewritten in place on a terminal, otherwise at most one line a second.
@@ -189,7 +246,8 @@ private:
     last_ = now;
     std::ostringstream line;
     line << '[' << std::fixed << std::setprecision(1) << std::setw(7) << now << " s] " << current_;
-    if(interrupted) line << " (Ctrl-C: stopping as soon as possible; Ctrl-C again quits)";
+    if(stop_signal.load() != 0)
+      line << " (" << signal_name(stop_signal.load()) << ": stopping as soon as possible; a second signal quits)";
     if(terminal_) {
       // A line longer than the terminal would wrap, and only its last row would be rewritten.
       std::string shown = line.str();
@@ -614,6 +672,17 @@ bool write_sphere(const std::string& path, const std::vector<Point>& sphere, con
 {
   const std::string temporary = path + ".partial." + std::to_string(::getpid());
   {
+    std::lock_guard<std::mutex> lock(temporary_file_mutex);
+    temporary_file = temporary;
+  }
+  struct Forget_temporary {
+    ~Forget_temporary()
+    {
+      std::lock_guard<std::mutex> lock(temporary_file_mutex);
+      temporary_file.clear();
+    }
+  } forget_temporary;
+  {
     std::ofstream out(temporary);
     if(!out) { error = "cannot open '" + temporary + "' for writing"; return false; }
     out << std::setprecision(17);
@@ -645,6 +714,7 @@ bool write_sphere(const std::string& path, const std::vector<Point>& sphere, con
 int main(int argc, char** argv)
 {
   const Clock::time_point start = Clock::now();
+  start_signal_watcher();  // first: before any other thread exists
   const Settings settings = parse_arguments(argc, argv);
   const std::string& input = settings.input;
   const std::string output = settings.output.empty() ? default_output(input) : settings.output;
@@ -660,7 +730,6 @@ int main(int argc, char** argv)
   run.tolerance = settings.tolerance;
   run.criterion = settings.criterion;
   Progress_line progress(!settings.quiet, start);
-  std::signal(SIGINT, on_interrupt);
 
   // An output that cannot be written is found before the work, not after it.
   std::string output_error;
@@ -676,14 +745,6 @@ int main(int argc, char** argv)
     std::cerr << "error: " << read.message << " [" << SP::IO::get_file_status_name(read.status) << "]\n";
     return EXIT_IO;
   }
-  // Ctrl-C before the iterations: nothing to keep, so quit between the steps of the set-up.
-  auto interrupted_early = [&progress] {
-    if(!interrupted) return false;
-    progress.clear();
-    std::cerr << "interrupted (Ctrl-C) before the iterations: nothing written\n";
-    return true;
-  };
-  if(interrupted_early()) return EXIT_INTERRUPTED;
   progress.phase("checking " + std::to_string(points.size()) + " vertices, " + std::to_string(faces.size()) + " faces");
   const SP::Input_check check = SP::check_polygon_soup(points, faces);
   run.read_seconds = seconds_since(start);
@@ -701,14 +762,17 @@ int main(int argc, char** argv)
     }
     return EXIT_BAD_INPUT;
   }
-  if(interrupted_early()) return EXIT_INTERRUPTED;
   progress.phase("building the halfedge mesh");
   Mesh mesh;
   CGAL::Polygon_mesh_processing::polygon_soup_to_polygon_mesh(points, faces, mesh);
-  if(interrupted_early()) return EXIT_INTERRUPTED;
 
   auto sphere_map = mesh.add_property_map<Mesh::Vertex_index, Point>("v:sphere", Point(0, 0, 0)).first;
-  auto report = [&progress](const SP::Progress& p) { return progress(p) && !interrupted; };
+  // The first report comes after stage 1: from then on a stop signal keeps the best map.
+  auto report = [&progress](const SP::Progress& p) {
+    int expected = SETTING_UP;
+    run_phase.compare_exchange_strong(expected, ITERATING);
+    return progress(p) && stop_signal.load() == 0;
+  };
   const auto parameters =
       SP::parameters::combine(SP::parameters::weighting(settings.weighting), SP::parameters::tolerance(settings.tolerance),
                               SP::parameters::max_seconds(settings.max_seconds), SP::parameters::metis_seed(settings.seed),
@@ -729,7 +793,7 @@ int main(int argc, char** argv)
       settings.sparse_lu ? SP::spherical_parameterize<Concurrency>(mesh, sphere_map, SP::parameters::combine(parameters, CGAL::parameters::sparse_linear_solver(SP::Sparse_LU_disk_solver_traits())))
                          : SP::spherical_parameterize<Concurrency>(mesh, sphere_map, parameters);
   run.map_seconds = seconds_since(map_start);
-  std::signal(SIGINT, SIG_DFL);
+  run_phase = WRITING;  // a stop signal from now on lets the writing finish
 
   const bool has_map = result.number_of_vertices > 0 && result.residual >= 0.;
   if(has_map) {
@@ -753,8 +817,8 @@ int main(int argc, char** argv)
     return result.status == SP::Error_code::OK ? EXIT_NOT_SOLVED : EXIT_BAD_INPUT;
   }
   if(result.status != SP::Error_code::OK) {
-    if(result.status == SP::Error_code::CANCELLED && interrupted)
-      std::cerr << "error: interrupted (Ctrl-C) [CANCELLED]\n";
+    if(result.status == SP::Error_code::CANCELLED && stop_signal.load() != 0)
+      std::cerr << "error: interrupted (" << signal_name(stop_signal.load()) << ") [CANCELLED]\n";
     else
       std::cerr << "error: " << result.message << " [" << SP::get_error_name(result.status) << "]\n";
     std::cerr << "       the best map found is written to '" << output << "'\n";

@@ -210,7 +210,7 @@ for name, o in (("good", good), ("bad", bad)):
     assert set(o) == keys, "%s: keys differ: %s" % (name, set(o) ^ keys)
     assert set(o["stages"]) == {"initial_guess", "gauss_seidel", "newton"}, name
     for s in o["stages"].values():
-        assert set(s) == {"seconds", "iterations", "residual"}, name
+        assert set(s) == {"seconds", "iterations", "linear_iterations", "residual"}, name
     assert set(o["seconds"]) == {"read", "map", "write", "total"}, name
     assert o["format"] == "spherical_parameterize/1", name
 assert good["status"] == "OK" and good["success"] is True and good["bijective"] is True, good
@@ -254,6 +254,53 @@ wait $pid; check "Ctrl-C" 1 $?
 grep -qF "interrupted (Ctrl-C)" "$scratch/err.txt" || { echo "FAIL: no interruption message"; cat "$scratch/err.txt"; failures=$((failures + 1)); }
 python3 -c 'import json, sys; o = json.load(open(sys.argv[1])); assert o["status"] == "CANCELLED" and o["output"], o' \
     "$scratch/interrupted.json" && [ -s "$scratch/interrupted.off" ] || { echo "FAIL: interrupted run"; failures=$((failures + 1)); }
+
+# SIGTERM, as job schedulers and `timeout` send it, at random moments (reading, stage 1, the iterations, writing) of
+# runs on meshes of several sizes, uniform and mean-value weights: every run ends within 2 s, with either a complete
+# map written (exit 1, CANCELLED; or exit 0 when it had just finished) or nothing at all (exit 143), and never a
+# partial file left behind.
+python3 - "$tool" "$shared" "$scratch" <<'SIGTERM_CHECK' || failures=$((failures + 1))
+import os, random, signal, subprocess, sys, time
+tool, shared, scratch = sys.argv[1:4]
+random.seed(int(os.environ.get("SIGTERM_SEED", "1")))
+cases = [("trimesh_fuze", "uniform"), ("npm_bunny", "mean_value"), ("oded_springer", "mean_value"),
+         ("oded_springer", "uniform"), ("c3d_horse", "uniform"), ("oded_koala", "mean_value")]
+problems = 0
+outcomes = {}
+for mesh, weights in cases:
+    for attempt in range(4):
+        out = os.path.join(scratch, "sigterm_%s_%s_%d.off" % (mesh, weights, attempt))
+        arguments = [tool, os.path.join(shared, mesh + ".off"), "-o", out, "-w", weights, "--criterion", "paper",
+                     "-t", "1e-300", "--max-seconds", "60", "-q"]
+        process = subprocess.Popen(arguments, stderr=subprocess.PIPE)
+        delay = random.uniform(0.0, 2.5)
+        time.sleep(delay)
+        sent = time.monotonic()
+        process.send_signal(signal.SIGTERM)
+        try:
+            _, err = process.communicate(timeout=10)
+        except subprocess.TimeoutExpired:
+            process.kill(); process.communicate()
+            print("FAIL: %s %s: still running 10 s after SIGTERM (sent at %.2f s)" % (mesh, weights, delay)); problems += 1
+            continue
+        took = time.monotonic() - sent
+        code = process.returncode
+        leftovers = [f for f in os.listdir(scratch) if f.startswith(os.path.basename(out) + ".partial")]
+        written = os.path.exists(out)
+        complete = False
+        if written:
+            tokens = open(out).read().split()
+            nv, nf = int(tokens[1]), int(tokens[2])
+            complete = tokens[0] == "OFF" and len(tokens) == 4 + 3 * nv + 4 * nf
+        good = took <= 2.0 and not leftovers and ((code in (0, 1) and complete) or (code == 128 + signal.SIGTERM and not written))
+        outcomes[code] = outcomes.get(code, 0) + 1
+        if not good:
+            problems += 1
+            print("FAIL: %s %s: SIGTERM at %.2f s: exit %d after %.2f s, written %s complete %s leftovers %s\n%s"
+                  % (mesh, weights, delay, code, took, written, complete, leftovers, err.decode()[-400:]))
+print("%s: SIGTERM at random moments, %d runs, exit codes %s" % ("ok" if problems == 0 else "FAIL", sum(outcomes.values()), outcomes))
+sys.exit(1 if problems else 0)
+SIGTERM_CHECK
 
 echo "$failures failed"
 [ "$failures" -eq 0 ]

@@ -19,6 +19,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <csignal>
 #include <cstring>
 #include <filesystem>
 #include <limits>
@@ -525,6 +526,29 @@ TEST(GlobalNewton, MobiusNewtonConvergesQuadratically)
     for(std::size_t k = 1; k < history.size(); ++k)
       if(history[k - 1] < 1e-8 && history[k] > 1e-14) EXPECT_LT(history[k], 1e3 * history[k - 1] * history[k - 1]) << file << " step " << k;
   }
+}
+
+// A stop signal that arrives inside a METIS call waits for the call to return (METIS would trap SIGTERM and lose
+// it): within the guard the application's handler is not called, after it the signal arrives exactly once.
+volatile std::sig_atomic_t stop_signals_seen = 0;
+extern "C" void count_stop_signal(int) { stop_signals_seen = stop_signals_seen + 1; }
+
+TEST(StopSignals, DeferredAroundMetisNotLost)
+{
+  void (*previous)(int) = std::signal(SIGTERM, count_stop_signal);
+  stop_signals_seen = 0;
+  {
+    const SPI::Deferred_stop_signals deferred;
+    std::raise(SIGTERM);
+    EXPECT_EQ(stop_signals_seen, 0);
+    // METIS itself under the guard: it still works, and the signal is still pending.
+    const SPI::Mesh_arrays arrays = arrays_of(read_mesh(cgal_data + "/triceratops.off"));
+    const SPI::Sphere_system system = system_of(arrays);
+    EXPECT_TRUE(SPI::split_into_two_disks(system, 0).valid);
+    EXPECT_EQ(stop_signals_seen, 0);
+  }
+  EXPECT_EQ(stop_signals_seen, 1);
+  std::signal(SIGTERM, previous);
 }
 
 // MINRES on a symmetric indefinite matrix (a path Laplacian shifted so that a few eigenvalues are negative) with a

@@ -8,8 +8,10 @@ goes, and that can stop it.
 
 It is called once at the end of stage 1 (stage `"initial guess"`, iteration 0), then after every sweep of the
 projected Gauss-Seidel iterations (`"gauss-seidel"`) and after every iteration of the nonlinear solver
-(`"global newton"` or `"local newton"`), from the thread that called `spherical_parameterize()`. It should
-return quickly: on small meshes it is called thousands of times a second.
+(`"global newton"` or `"local newton"`), from the thread that called `spherical_parameterize()`. Inside an
+iteration that lasts (a Levenberg-Marquardt step with several factorizations, a Newton step on a large mesh) the
+last report is repeated with its time updated, at most every half second, so that a cancellation takes effect
+within about a second. It should return quickly: on small meshes it is called thousands of times a second.
 
 Returning `false` stops the computation at that point: the status is `Error_code::CANCELLED` (unless the
 connectivity is provably not inscribable: `Error_code::NO_BALANCED_SOLUTION` takes precedence), and the map

@@ -48,7 +48,8 @@ enum class Convergence_test {
 };
 
 /// \ingroup PkgSphericalParameterizationRef
-/// What the `progress_callback` named parameter receives, at the end of every stage and after every iteration.
+/// What the `progress_callback` named parameter receives, at the end of every stage and after every iteration (and,
+/// inside an iteration that lasts, the last report again with its time updated, at most every half second).
 struct Progress {
   const char* stage = "";          ///< "initial guess", "gauss-seidel", "global newton" or "local newton".
   std::size_t iteration = 0;       ///< Iterations of that stage so far (0 for the initial guess).

@@ -454,15 +454,26 @@ Result spherical_parameterize(const TriangleMesh& tm, VertexSphereMap vsm,
       }
       return !user_callback || user_callback(progress);
     };
-    options.iterations.progress = [report = options.report, clock](const char* stage, std::size_t sweep, double residual,
-                                                                    std::size_t invalid) {
-      Progress progress;
-      progress.stage = stage;
-      progress.iteration = sweep;
-      progress.residual = residual;
-      progress.non_positive_faces = invalid;
-      progress.seconds = clock.seconds();
-      return report(progress);
+    auto last = std::make_shared<Progress>();
+    options.iterations.progress = [report = options.report, clock, last](const char* stage, std::size_t sweep, double residual,
+                                                                          std::size_t invalid) {
+      last->stage = stage;
+      last->iteration = sweep;
+      last->residual = residual;
+      last->non_positive_faces = invalid;
+      last->seconds = clock.seconds();
+      return report(*last);
+    };
+    // Inside an iteration that lasts (a Levenberg-Marquardt step with several factorizations, a Newton step on a
+    // large mesh), the last report is repeated with the time updated, at most every half second, so that a
+    // cancellation takes effect within about a second.
+    auto last_poll = std::make_shared<double>(0.);
+    options.iterations.keep_going = [report = options.report, clock, last, last_poll]() {
+      const double now = clock.seconds();
+      if(*last->stage == '\0' || now - *last_poll < 0.5) return true;
+      *last_poll = now;
+      last->seconds = now;
+      return report(*last);
     };
   }
 

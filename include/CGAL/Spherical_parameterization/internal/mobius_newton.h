@@ -111,6 +111,7 @@ inline Iteration_report mobius_newton(Sphere_state& state, const Iteration_optio
 
     // The boost gradient only needs to be small next to the residual forces that Newton is about to remove.
     counts.boosts += balance_boosts(state, 1e-3 * residual * static_cast<double>(n), 8);
+    if(options.cancel_requested()) { report.cancelled = true; break; }
     const double previous_residual = residual;
     residual = compute_residuals(system, x).paper;
 
@@ -122,6 +123,7 @@ inline Iteration_report mobius_newton(Sphere_state& state, const Iteration_optio
     } else {
       has_step = newton.factorize(x) && newton.solve(step, allow_folds);
     }
+    if(options.cancel_requested()) { report.cancelled = true; break; }
     if(has_step) {
       Vector3 rotation, boost;
       remove_rotation_and_boost(x, step, rotation, boost);

@@ -32,6 +32,10 @@ struct Iteration_options {
   bool preserve_bijectivity = true;
   // Called after every sweep; returning false cancels the iterations.
   std::function<bool(const char* stage, std::size_t sweep, double residual, std::size_t invalid_faces)> progress;
+  // Polled inside long iterations (it repeats the last progress report); returning false cancels.
+  std::function<bool()> keep_going;
+
+  bool cancel_requested() const { return keep_going && !keep_going(); }
 };
 
 struct Iteration_report {

@@ -12,6 +12,7 @@
 #define CGAL_SPHERICAL_PARAMETERIZATION_INTERNAL_TANGENT_NEWTON_SYSTEM_H
 
 #include <CGAL/Spherical_parameterization/internal/Sphere_system.h>
+#include <CGAL/Spherical_parameterization/internal/deferred_stop_signals.h>
 #include <CGAL/Spherical_parameterization/internal/Vector3.h>
 
 #include <Eigen/OrderingMethods>
@@ -70,6 +71,7 @@ inline std::vector<int> vertex_elimination_rank(const Sphere_system& system)
   idx_t options[METIS_NOPTIONS];
   METIS_SetDefaultOptions(options);
   options[METIS_OPTION_NUMBERING] = 0;
+  const Deferred_stop_signals deferred;  // no stop signal lost inside METIS (see deferred_stop_signals.h)
   if(METIS_NodeND(&nv, xadj.data(), adjncy.data(), nullptr, options, perm.data(), iperm.data()) != METIS_OK) return rank;
   for(std::size_t i = 0; i < n; ++i) rank[i] = static_cast<int>(iperm[i]);
   return rank;

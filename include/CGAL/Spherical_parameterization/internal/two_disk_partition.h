@@ -11,6 +11,7 @@
 #define CGAL_SPHERICAL_PARAMETERIZATION_INTERNAL_TWO_DISK_PARTITION_H
 
 #include <CGAL/Spherical_parameterization/internal/Sphere_system.h>
+#include <CGAL/Spherical_parameterization/internal/deferred_stop_signals.h>
 
 #include <metis.h>
 
@@ -62,6 +63,7 @@ inline std::vector<idx_t> metis_vertex_separator(const Sphere_system& system, in
   options[METIS_OPTION_SEED] = static_cast<idx_t>(seed);
   if(user_options != nullptr) std::copy(user_options, user_options + METIS_NOPTIONS, options);
   idx_t separator_size = 0;
+  const Deferred_stop_signals deferred;  // no stop signal lost inside METIS (see deferred_stop_signals.h)
   if(METIS_ComputeVertexSeparator(&n, xadj.data(), adjncy.data(), nullptr, options, &separator_size, part.data()) != METIS_OK)
     return {};
   return part;
