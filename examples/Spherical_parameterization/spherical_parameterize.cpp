@@ -1,11 +1,15 @@
 // Command line: map a closed genus-0 triangle mesh onto the unit sphere, bijectively.
 //
-//   spherical_parameterize input.(off|off.gz|obj|ply|stl) [-o sphere.off] [options]      (--help for all of them)
+//   spherical_parameterize input.(off|off.gz|obj|ply|stl|gii) [-o sphere.off] [options]  (--help for all of them)
+//   spherical_parameterize lh.white -o lh.sphere                                        (FreeSurfer surfaces)
 //
-// The output keeps the input's vertex order and face list; coordinates are written with 17 significant digits.
+// The output keeps the input's vertex order and face list; text formats get 17 significant digits, and float32
+// formats (FreeSurfer, GIfTI) are certified again as written.
 // stdout: the figures (text, or one JSON object with --json); stderr: progress, warnings and errors.
 
+#include <CGAL/Spherical_parameterization/IO/brain_surfaces.h>
 #include <CGAL/Spherical_parameterization/IO/read_polygon_soup.h>
+#include <CGAL/Spherical_parameterization/is_bijective_on_sphere.h>
 #include <CGAL/Spherical_parameterization/check_input.h>
 #include <CGAL/Spherical_parameterization/spherical_parameterize.h>
 
@@ -13,6 +17,7 @@
 #include <CGAL/IO/polygon_soup_io.h>
 #include <CGAL/Polygon_mesh_processing/polygon_soup_to_polygon_mesh.h>
 #include <CGAL/Surface_mesh.h>
+#include <boost/property_map/property_map.hpp>
 
 #include <sys/ioctl.h>
 #include <unistd.h>
@@ -64,9 +69,17 @@ void print_usage(std::ostream& out)
          "units of its own neighbourhood) is at most the tolerance.\n"
          "\n"
          "Input and output:\n"
-         "  INPUT                 a mesh: .off (also gzip-compressed, .off.gz), .obj, .ply, .stl\n"
-         "  -o, --output FILE     the sphere mesh, .off or .ply: the input's vertices in the same order and its\n"
-         "                        faces, 17 significant digits (default: INPUT without extension + _sphere.off)\n"
+         "  INPUT                 a mesh: .off (also gzip-compressed, .off.gz), .obj, .ply, .stl, a FreeSurfer\n"
+         "                        surface (lh.white, lh.pial, ...: recognized by its contents) or GIfTI .gii\n"
+         "  -o, --output FILE     the sphere mesh with the input's vertices in the same order and its faces:\n"
+         "                        .off or .ply (17 significant digits), .gii (GIfTI, float32 unless --float64),\n"
+         "                        any other name a FreeSurfer surface (float32; lh.sphere). Default: INPUT\n"
+         "                        without extension + _sphere.off; for a FreeSurfer input INPUT + .sphere in its\n"
+         "                        format, for a GIfTI input INPUT's stem + _sphere.surf.gii\n"
+         "      --radius R        write the sphere with radius R (default 1; FreeSurfer's spheres: 100)\n"
+         "      --float64         GIfTI output with float64 coordinates\n"
+         "  A float32 output is certified again as written: if rounding folded a triangle, the run says so\n"
+         "  (JSON \"written\") and exits 1.\n"
          "\n"
          "Method:\n"
          "  -w, --weights W       uniform (default; Tutte weights, covered by the theory, most robust),\n"
@@ -111,6 +124,8 @@ void print_usage(std::ostream& out)
          "  uniform_initial_guess_fallback, admissible_weights, raised_weights, clamped_weights, rejected_moves,\n"
          "  separator_size, cut_loop_length,\n"
          "  stages.{initial_guess,gauss_seidel,newton}.{seconds,iterations,linear_iterations,residual},\n"
+         "  written.{format,precision,radius,flipped_faces,bijective} (the coordinates as written; null if\n"
+         "  nothing was written; flipped_faces null when they are the certified ones),\n"
          "  seconds.{read,map,write,total}.\n"
          "\n"
          "Exit status: 0 success (converged and certified bijective); 1 not converged or not bijective (the\n"
@@ -320,8 +335,19 @@ std::string json_number(double x, bool known = true)
 
 std::string json_count(std::size_t n, bool known = true) { return known ? std::to_string(n) : "null"; }
 
+// What the output file holds, and the certificate of its coordinates as written (rounded to float32 or scaled).
+struct Written_figures {
+  std::string format;            // "off", "ply", "gifti", "freesurfer"
+  std::string precision;         // "float32", "float64"
+  double radius = 1.;
+  bool certified = false;        // the written coordinates were certified (they differ from the certified map)
+  std::size_t flipped_faces = 0;
+  bool bijective = false;
+};
+
 struct Run_figures {
   std::string input, output;  // output empty: nothing written
+  Written_figures written;
   std::string weights;
   std::string criterion = "imbalance";
   double tolerance = 1e-6;
@@ -370,6 +396,13 @@ void print_json(std::ostream& out, const SP::Result& r, const Run_figures& run)
       << "    \"gauss_seidel\": " << stage(r.gauss_seidel) << ",\n"
       << "    \"newton\": " << stage(r.newton) << "\n"
       << "  },\n"
+      << "  \"written\": "
+      << (run.output.empty() ? std::string("null")
+                             : "{\"format\": " + json_string(run.written.format) + ", \"precision\": " + json_string(run.written.precision) +
+                                   ", \"radius\": " + json_number(run.written.radius) +
+                                   ", \"flipped_faces\": " + json_count(run.written.flipped_faces, run.written.certified) +
+                                   ", \"bijective\": " + (run.written.certified ? (run.written.bijective ? "true" : "false") : std::string("null")) + "}")
+      << ",\n"
       << "  \"seconds\": {\"read\": " << json_number(run.read_seconds) << ", \"map\": " << json_number(run.map_seconds)
       << ", \"write\": " << json_number(run.write_seconds) << ", \"total\": " << json_number(run.total_seconds) << "}\n"
       << "}\n";
@@ -404,7 +437,13 @@ void print_text(std::ostream& out, const SP::Result& r, const Run_figures& run)
       << r.newton.residual << ", " << plural(r.rejected_moves, "move") << " not taken (stages 2 and 3)\n"
       << "time:            " << run.total_seconds << " s (read " << run.read_seconds << " s, map " << run.map_seconds
       << " s, write " << run.write_seconds << " s)\n";
-  if(!run.output.empty()) out << "written:         " << run.output << "\n";
+  if(!run.output.empty()) {
+    out << "written:         " << run.output << " (" << run.written.format << ", " << run.written.precision;
+    if(run.written.radius != 1.) out << ", radius " << run.written.radius;
+    if(run.written.certified)
+      out << "; as written: " << plural(run.written.flipped_faces, "flipped face") << (run.written.bijective ? ", bijective" : ", NOT bijective");
+    out << ")\n";
+  }
 }
 
 // --- Command-line parsing, with a suggestion for every mistake. ---
@@ -454,7 +493,9 @@ struct Option {
 };
 
 const Option options[] = {
-  {"-o", "--output", "a file name ending in .off or .ply"},
+  {"-o", "--output", "a file name: .off, .ply, .gii, or a FreeSurfer surface name"},
+  {"", "--radius", "a positive number"},
+  {"", "--float64", nullptr},
   {"-w", "--weights", "uniform, cotangent or mean_value"},
   {"-t", "--tolerance", "a positive number such as 1e-6"},
   {"", "--criterion", "imbalance or paper"},
@@ -526,7 +567,8 @@ struct Settings {
   std::string criterion = "imbalance";
   long gauss_seidel_sweeps = -1;  // -1: the library's default
   int seed = 0;
-  bool quiet = false, json = false, backtracking = true, sparse_lu = false, admissible = false;
+  bool quiet = false, json = false, backtracking = true, sparse_lu = false, admissible = false, float64 = false;
+  double radius = 1.;
   SP::Nonlinear_solver solver = SP::Nonlinear_solver::GLOBAL_NEWTON;
 };
 
@@ -583,8 +625,12 @@ Settings parse_arguments(int argc, char** argv)
 
     if(canonical == "--help") { print_usage(std::cout); std::exit(EXIT_OK); }
     else if(canonical == "--output") {
-      if(!ends_with(value, ".off") && !ends_with(value, ".ply"))
-        usage_error("cannot write '" + value + "': the output is an .off or .ply file");
+      if(ends_with(value, ".obj") || ends_with(value, ".stl") || ends_with(value, ".gz"))
+        usage_error("cannot write '" + value + "': the output is .off, .ply, .gii or a FreeSurfer surface");
+#ifndef CGAL_SPHERICAL_PARAMETERIZATION_USE_GIFTI
+      if(ends_with(value, ".gii"))
+        usage_error("cannot write '" + value + "': this program was built without the GIFTI library (libgiftiio-dev)");
+#endif
       settings.output = value;
     }
     else if(canonical == "--weights") {
@@ -606,6 +652,8 @@ Settings parse_arguments(int argc, char** argv)
                                                                               : SP::Nonlinear_solver::GLOBAL_NEWTON;
     else if(canonical == "--disk-solver") settings.sparse_lu = choice(canonical, value, {"amg", "sparse_lu"}) == "sparse_lu";
     else if(canonical == "--no-backtracking") settings.backtracking = false;
+    else if(canonical == "--radius") settings.radius = positive_number(name, value);
+    else if(canonical == "--float64") settings.float64 = true;
     else if(canonical == "--admissible-weights") settings.admissible = true;
     else if(canonical == "--quiet") settings.quiet = true;
     else if(canonical == "--json") settings.json = true;
@@ -636,8 +684,28 @@ void explain_missing_input(const std::string& input)
   std::exit(EXIT_IO);
 }
 
+// FreeSurfer surfaces have no extension of their own (lh.white, lh.pial): they are recognized by their first bytes.
+bool is_FreeSurfer_file(const std::string& path)
+{
+  std::ifstream in(path, std::ios::binary);
+  char magic[3] = {0, 0, 0};
+  in.read(magic, 3);
+  return in.gcount() == 3 && SP::IO::internal::has_FreeSurfer_magic(magic, magic + 3);
+}
+
+std::string output_format(const std::string& path)
+{
+  if(ends_with(path, ".off")) return "off";
+  if(ends_with(path, ".ply")) return "ply";
+  if(ends_with(path, ".gii")) return "gifti";
+  return "freesurfer";
+}
+
 std::string default_output(std::string input)
 {
+  if(is_FreeSurfer_file(input)) return input + ".sphere";  // lh.white -> lh.white.sphere, in FreeSurfer's format
+  if(ends_with(input, ".surf.gii")) return input.substr(0, input.size() - 9) + "_sphere.surf.gii";
+  if(ends_with(input, ".gii")) return input.substr(0, input.size() - 4) + "_sphere.surf.gii";
   if(input.size() > 3 && input.compare(input.size() - 3, 3, ".gz") == 0) input.resize(input.size() - 3);  // mesh.off.gz
   const std::size_t slash = input.find_last_of('/');
   const std::size_t dot = input.find_last_of('.');
@@ -666,9 +734,48 @@ bool can_write_next_to(const std::string& path, std::string& error)
   return true;
 }
 
+// The certificate of the coordinates as the file holds them, when they differ from the certified map: rounded to
+// float32 (FreeSurfer, GIfTI without --float64) or scaled by a radius other than 1. Rounding can fold triangles whose
+// edges are below float32's resolution (about 6e-8 of the radius).
+Written_figures certify_as_written(const Mesh& mesh, const std::vector<Point>& sphere, const std::string& format,
+                                   const Settings& settings)
+{
+  Written_figures written;
+  written.format = format;
+  written.radius = settings.radius;
+  const bool float32 = format == "freesurfer" || (format == "gifti" && !settings.float64);
+  written.precision = float32 ? "float32" : "float64";
+  if(!float32 && settings.radius == 1.) return written;  // exactly the certified coordinates
+  auto as_written = [&](double c) { return float32 ? double(static_cast<float>(settings.radius * c)) : settings.radius * c; };
+  std::vector<Point> stored(sphere.size());
+  for(std::size_t i = 0; i < sphere.size(); ++i) stored[i] = Point(as_written(sphere[i].x()), as_written(sphere[i].y()), as_written(sphere[i].z()));
+  const SP::Sphere_map_certificate certificate = SP::certify_sphere_map(
+      mesh, boost::make_iterator_property_map(stored.begin(), get(CGAL::vertex_index, mesh)));
+  written.certified = true;
+  written.flipped_faces = certificate.flipped_faces;
+  written.bijective = certificate.bijective;
+  return written;
+}
+
+// A polygon soup from any of the formats: FreeSurfer surfaces by their first bytes, GIfTI by the name .gii.
+SP::IO::File_read read_input(const std::string& path, std::vector<Point>& points, std::vector<std::vector<std::size_t>>& faces,
+                             SP::IO::FreeSurfer_surface_info& freesurfer_info)
+{
+  if(ends_with(path, ".gii")) {
+#ifdef CGAL_SPHERICAL_PARAMETERIZATION_USE_GIFTI
+    return SP::IO::read_GIfTI_surface(path, points, faces);
+#else
+    return SP::IO::internal::file_error(SP::IO::File_status::UNKNOWN_FORMAT,
+                                        path + ": this program was built without the GIFTI library (libgiftiio-dev)");
+#endif
+  }
+  if(is_FreeSurfer_file(path)) return SP::IO::read_FreeSurfer_surface(path, points, faces, &freesurfer_info);
+  return SP::IO::read_polygon_soup(path, points, faces);
+}
+
 // Writes to a temporary file next to `path`, then renames it: a failure never leaves a half-written file.
 bool write_sphere(const std::string& path, const std::vector<Point>& sphere, const std::vector<std::vector<std::size_t>>& faces,
-                  std::string& error)
+                  const SP::IO::FreeSurfer_surface_info& freesurfer_info, const Settings& settings, std::string& error)
 {
   const std::string temporary = path + ".partial." + std::to_string(::getpid());
   {
@@ -682,17 +789,35 @@ bool write_sphere(const std::string& path, const std::vector<Point>& sphere, con
       temporary_file.clear();
     }
   } forget_temporary;
-  {
+  const std::string format = output_format(path);
+  if(format == "gifti") {
+#ifdef CGAL_SPHERICAL_PARAMETERIZATION_USE_GIFTI
+    if(!SP::IO::write_GIfTI_surface(temporary, sphere, faces, settings.float64, settings.radius, error)) {
+      std::remove(temporary.c_str());
+      return false;
+    }
+#else
+    error = "this program was built without the GIFTI library";
+    return false;
+#endif
+  } else if(format == "freesurfer") {
+    std::ofstream out(temporary, std::ios::binary);
+    if(!out) { error = "cannot open '" + temporary + "' for writing"; return false; }
+    const bool written = SP::IO::write_FreeSurfer_surface(out, sphere, faces, freesurfer_info, settings.radius);
+    out.flush();
+    if(!written || !out) { error = "writing '" + temporary + "' failed"; std::remove(temporary.c_str()); return false; }
+  } else {
     std::ofstream out(temporary);
     if(!out) { error = "cannot open '" + temporary + "' for writing"; return false; }
     out << std::setprecision(17);
-    if(ends_with(path, ".ply")) {
+    if(format == "ply") {
       out << "ply\nformat ascii 1.0\nelement vertex " << sphere.size() << "\nproperty double x\nproperty double y\n"
           << "property double z\nelement face " << faces.size() << "\nproperty list uchar int vertex_indices\nend_header\n";
     } else {
       out << "OFF\n" << sphere.size() << ' ' << faces.size() << " 0\n";
     }
-    for(const Point& p : sphere) out << p.x() << ' ' << p.y() << ' ' << p.z() << '\n';
+    const double r = settings.radius;
+    for(const Point& p : sphere) out << r * p.x() << ' ' << r * p.y() << ' ' << r * p.z() << '\n';
     for(const auto& f : faces) {
       out << f.size();
       for(std::size_t i : f) out << ' ' << i;
@@ -739,7 +864,8 @@ int main(int argc, char** argv)
   progress.phase("reading " + input);
   std::vector<Point> points;
   std::vector<std::vector<std::size_t>> faces;
-  const SP::IO::File_read read = SP::IO::read_polygon_soup(input, points, faces);
+  SP::IO::FreeSurfer_surface_info freesurfer_info;  // kept for a FreeSurfer output (its volume geometry)
+  const SP::IO::File_read read = read_input(input, points, faces, freesurfer_info);
   if(!read) {
     progress.clear();
     std::cerr << "error: " << read.message << " [" << SP::IO::get_file_status_name(read.status) << "]\n";
@@ -802,8 +928,9 @@ int main(int argc, char** argv)
     std::vector<Point> sphere(points.size());
     for(Mesh::Vertex_index v : mesh.vertices()) sphere[static_cast<std::size_t>(v)] = sphere_map[v];
     std::string error;
-    if(!write_sphere(output, sphere, faces, error)) { progress.clear(); std::cerr << "error: " << error << "\n"; return EXIT_IO; }
+    if(!write_sphere(output, sphere, faces, freesurfer_info, settings, error)) { progress.clear(); std::cerr << "error: " << error << "\n"; return EXIT_IO; }
     run.output = output;
+    run.written = certify_as_written(mesh, sphere, output_format(output), settings);
     run.write_seconds = seconds_since(write_start);
   }
   run.total_seconds = seconds_since(start);
@@ -815,6 +942,12 @@ int main(int argc, char** argv)
   if(!has_map) {
     std::cerr << "error: " << result.message << " [" << SP::get_error_name(result.status) << "]\n";
     return result.status == SP::Error_code::OK ? EXIT_NOT_SOLVED : EXIT_BAD_INPUT;
+  }
+  if(result.status == SP::Error_code::OK && run.written.certified && !run.written.bijective) {
+    std::cerr << "error: the map is certified in double precision, but the coordinates as written (" << run.written.precision
+              << ", radius " << run.written.radius << ") fold " << plural(run.written.flipped_faces, "triangle")
+              << ": write .off or .ply (17 digits), or .gii with --float64\n";
+    return EXIT_NOT_SOLVED;
   }
   if(result.status != SP::Error_code::OK) {
     if(result.status == SP::Error_code::CANCELLED && stop_signal.load() != 0)

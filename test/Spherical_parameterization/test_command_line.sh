@@ -166,7 +166,7 @@ expect_error "seed not an integer" 4 "expects an integer, got '1.5'" "$bunny" --
 expect_error "misspelled weights" 4 "did you mean 'cotangent'?" "$bunny" -w cotangnet
 expect_error "unknown solver" 4 "one of: global, local" "$bunny" --solver newton
 expect_error "flag with a value" 4 "--quiet takes no value" "$bunny" --quiet=yes
-expect_error "unsupported output format" 4 "the output is an .off or .ply file" "$bunny" -o "$scratch/sphere.obj"
+expect_error "unsupported output format" 4 "the output is .off, .ply, .gii or a FreeSurfer surface" "$bunny" -o "$scratch/sphere.obj"
 expect_error "two inputs" 4 "more than one input file" "$bunny" "$bunny"
 cp "$bunny" "$scratch/mine.off"
 expect_error "output overwrites the input" 4 "is the input file" "$scratch/mine.off" -o "$scratch/mine.off"
@@ -203,7 +203,7 @@ keys = {"format", "input", "output", "status", "success", "message", "vertices",
         "residual", "max_tangential_residual", "flipped_faces", "total_signed_area", "bijective",
         "initial_flipped_faces", "uniform_initial_guess_fallback", "admissible_weights", "raised_weights", "clamped_weights",
         "rejected_moves", "separator_size",
-        "cut_loop_length", "stages", "seconds"}
+        "cut_loop_length", "stages", "written", "seconds"}
 good = json.load(open(sys.argv[1]))
 bad = json.load(open(sys.argv[2]))
 for name, o in (("good", good), ("bad", bad)):
