@@ -1,0 +1,97 @@
+"""The Python module as a user meets it: map, figures, certificate, distortion, readers, errors, progress,
+cancellation, Ctrl-C and the GIL. Usage: python3 test_python_module.py MODULE_DIR SHARED_MESHES BUNDLED_BUNNY"""
+import os
+import signal
+import sys
+import threading
+import time
+
+import numpy as np
+
+sys.path.insert(0, sys.argv[1])
+import cgal_spherical_parameterization as sp  # noqa: E402
+
+shared, bunny = sys.argv[2], sys.argv[3]
+failures = 0
+
+
+def check(condition, what):
+    global failures
+    print(("ok: " if condition else "FAIL: ") + what)
+    failures += 0 if condition else 1
+
+
+# Map the bundled bunny: X on the unit sphere, in V's order, certified; the figures of the command line's JSON.
+V, F = sp.read_surface(bunny)
+check(V.shape == (1839, 3) and F.shape == (3674, 3) and V.dtype == np.float64, "read_surface: %s %s" % (V.shape, F.shape))
+X, info = sp.map_to_sphere(V, F)
+check(info["status"] == "OK" and info["success"] and info["bijective"] and info["flipped_faces"] == 0, "map_to_sphere: %s" % info["message"])
+check(X.shape == V.shape and X.dtype == np.float64 and np.abs(np.linalg.norm(X, axis=1) - 1).max() < 1e-14, "X on the unit sphere")
+check(info["max_imbalance"] <= 1e-6 and set(info["stages"]) == {"initial_guess", "gauss_seidel", "newton"}, "figures")
+certificate = sp.certify(X, F)
+check(certificate["bijective"] and certificate["flipped_faces"] == 0 and abs(certificate["total_signed_area"] - 4 * np.pi) < 1e-9,
+      "certify: %s" % certificate)
+# The certificate can fail: swap two vertices' images.
+Y = X.copy()
+Y[[0, 100]] = Y[[100, 0]]
+check(not sp.certify(Y, F)["bijective"], "certify rejects a map with two vertices swapped")
+distortion = sp.measure_distortion(V, X, F)
+check(0 < distortion["mean_angle_error_degrees"] < 30 and distortion["log_area_ratio_stddev"] > 0, "distortion: %s" % distortion)
+X2, info2 = sp.map_to_sphere(V, F, weights="cotangent")
+check(info2["weights"] == "cotangent" and info2["status"] in ("OK", "NOT_CONVERGED"), "cotangent weights: %s" % info2["status"])
+# FreeSurfer surfaces through the same reader.
+V3, F3 = sp.read_surface(os.path.join(shared, "formats", "lh.fsavg5.pial"))
+check(V3.shape == (10242, 3), "read_surface FreeSurfer: %s" % (V3.shape,))
+
+# Invalid input raises ValueError whose message starts with the error code.
+def raises(call, code, what):
+    try:
+        call()
+    except ValueError as error:
+        check(str(error).startswith(code), "%s: ValueError %s" % (what, str(error)[:90]))
+        return
+    check(False, "%s: no ValueError" % what)
+
+raises(lambda: sp.map_to_sphere(V, F[:-1]), "HAS_BORDER", "a face removed")
+raises(lambda: sp.map_to_sphere(V, np.array([[0, 1, 5000]])), "INVALID_ARGUMENT", "an index out of range")
+raises(lambda: sp.map_to_sphere(V[:, :2], F), "INVALID_ARGUMENT", "V with two columns")
+raises(lambda: sp.map_to_sphere(V, F, weights="conformal"), "INVALID_ARGUMENT", "unknown weights")
+raises(lambda: sp.read_surface(os.path.join(shared, "PROVENANCE.md")), "UNKNOWN_FORMAT", "not a mesh file")
+
+# Progress: the callable sees the stages; returning False cancels with the best map so far.
+Vk, Fk = sp.read_surface(os.path.join(shared, "oded_koala.off"))
+stages = []
+def follow(stage, iteration, residual, non_positive, seconds):
+    stages.append((stage, seconds))
+    return seconds < 1.0
+Xk, infok = sp.map_to_sphere(Vk, Fk, criterion="paper", tolerance=1e-300, max_seconds=30, progress=follow)
+check(infok["status"] == "CANCELLED" and len(stages) >= 2 and Xk.shape == Vk.shape and stages[-1][1] < 3,
+      "progress and cancel: %s after %d reports, %.2f s" % (infok["status"], len(stages), stages[-1][1] if stages else -1))
+
+# The GIL is released during the work: another Python thread keeps running.
+ticks = [0]
+stop = threading.Event()
+def tick():
+    while not stop.is_set():
+        ticks[0] += 1
+        time.sleep(0.001)
+ticker = threading.Thread(target=tick)
+ticker.start()
+start = time.monotonic()
+sp.map_to_sphere(Vk, Fk, criterion="paper", tolerance=1e-300, max_seconds=1.5)
+elapsed = time.monotonic() - start
+stop.set()
+ticker.join()
+check(ticks[0] > 100 * elapsed * 0.3, "GIL released: %d ticks of another thread in %.2f s" % (ticks[0], elapsed))
+
+# Ctrl-C (SIGINT) during the work raises KeyboardInterrupt promptly.
+threading.Timer(1.0, lambda: os.kill(os.getpid(), signal.SIGINT)).start()
+start = time.monotonic()
+try:
+    sp.map_to_sphere(Vk, Fk, criterion="paper", tolerance=1e-300, max_seconds=60)
+    check(False, "Ctrl-C: no KeyboardInterrupt")
+except KeyboardInterrupt:
+    check(time.monotonic() - start < 3.0, "Ctrl-C: KeyboardInterrupt after %.2f s" % (time.monotonic() - start))
+
+print("%d failed" % failures)
+sys.exit(1 if failures else 0)
