@@ -58,13 +58,7 @@ public:
       tangent_frame(x[i], t1_[i], t2_[i]);
       Vector3 force;
       double alpha = 0.;
-      for(std::size_t k = system_.offsets[i]; k < system_.offsets[i + 1]; ++k) {
-        const std::size_t j = static_cast<std::size_t>(system_.neighbors[k]);
-        const double w = system_.weights[k] * system_.row_sums[i];
-        const Vector3 e = x[j] - x[i];
-        force += w * e;
-        alpha += w * (1. - 0.5 * squared_length(e));
-      }
+      force_and_alpha(system_, x, i, force, alpha);
       alpha_[i] = alpha;
       rhs_[2 * i] = dot(t1_[i], force);
       rhs_[2 * i + 1] = dot(t2_[i], force);

@@ -77,6 +77,22 @@ inline std::vector<int> vertex_elimination_rank(const Sphere_system& system)
   return rank;
 }
 
+// The two quantities of vertex i that Newton's equations need, with the raw weights W: the force
+// sum_j W_ij (x_j - x_i) (its tangential part is the residual) and alpha_i = x_i . sum_j W_ij x_j (the diagonal of
+// the Jacobian), both written with differences, alpha_i = sum_j W_ij (1 - |x_j - x_i|^2 / 2), so that tiny triangles
+// keep their digits.
+inline void force_and_alpha(const Sphere_system& system, const std::vector<Vector3>& x, std::size_t i, Vector3& force, double& alpha)
+{
+  force = Vector3();
+  alpha = 0.;
+  for(std::size_t k = system.offsets[i]; k < system.offsets[i + 1]; ++k) {
+    const double w = system.weights[k] * system.row_sums[i];
+    const Vector3 e = x[static_cast<std::size_t>(system.neighbors[k])] - x[i];
+    force += w * e;
+    alpha += w * (1. - 0.5 * squared_length(e));
+  }
+}
+
 class Tangent_newton_system {
 public:
   explicit Tangent_newton_system(const Sphere_system& system) : system_(system) {}
@@ -108,12 +124,10 @@ public:
     for(std::size_t i = 0; i < n; ++i) {
       Vector3 force;
       double alpha = 0.;
+      force_and_alpha(system_, x, i, force, alpha);
       for(std::size_t k = system_.offsets[i]; k < system_.offsets[i + 1]; ++k) {
         const std::size_t j = static_cast<std::size_t>(system_.neighbors[k]);
         const double w = system_.weights[k] * system_.row_sums[i];
-        const Vector3 e = x[j] - x[i];
-        force += w * e;
-        alpha += w * (1. - 0.5 * squared_length(e));
         if(rank_[i] < rank_[j]) {
           const std::array<std::size_t, 4>& slot = block_slots_[k];
           value[slot[0]] = w * dot(t1_[i], t1_[j]);
