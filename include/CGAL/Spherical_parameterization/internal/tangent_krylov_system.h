@@ -49,7 +49,6 @@ public:
       if(!build_preconditioner()) return false;
       hierarchy_built_ = true;
     }
-    x_ = &x;
     t1_.resize(n);
     t2_.resize(n);
     alpha_.resize(n);
@@ -199,7 +198,6 @@ private:
   }
 
   const Sphere_system& system_;
-  const std::vector<Vector3>* x_ = nullptr;
   std::vector<Vector3> t1_, t2_, ambient_;
   std::vector<double> alpha_, rhs_, solution_, projected_;
   std::vector<double> rotations_[3];
