@@ -6,4 +6,5 @@ scripts/setup.sh spherical_parameterize
 build="${BUILD_DIR:-build}"
 input="${1:-examples/Spherical_parameterization/data/bunny.off}"
 output="${2:-$build/bunny_sphere.off}"
-"$build/examples/Spherical_parameterization/spherical_parameterize" "$input" -o "$output"
+# --overwrite: map and print the figures on every run, not only the first.
+"$build/examples/Spherical_parameterization/spherical_parameterize" "$input" -o "$output" --overwrite

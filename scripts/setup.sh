@@ -7,7 +7,7 @@ cd "$(dirname "$0")/.."
 # TBB is optional for users; the tests check that CGAL::Parallel_tag gives the same map as Sequential_tag.
 # Doxygen builds the manual's reference pages; ctest checks them for warnings (doc.manual, about a second).
 bash scripts/install_missing.sh cmake g++ libcgal-dev libcgal-demo libeigen3-dev libmetis-dev libboost-dev libgtest-dev ccache zlib1g-dev libtbb-dev doxygen \
-  libgiftiio-dev python3-nibabel pybind11-dev python3-dev python3-numpy
+  libgiftiio-dev python3-nibabel pybind11-dev python3-dev python3-numpy parallel
 
 build="${BUILD_DIR:-build}"
 cmake -S . -B "$build" -DCMAKE_BUILD_TYPE=Release >/dev/null

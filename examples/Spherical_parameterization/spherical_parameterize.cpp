@@ -5,7 +5,7 @@
 //
 // The output keeps the input's vertex order and face list; text formats get 17 significant digits, and float32
 // formats (FreeSurfer, GIfTI) are certified again as written.
-// stdout: the figures (text, or one JSON object with --json); stderr: progress, warnings and errors.
+// stdout: the figures (text, or one JSON line with --json); stderr: progress, warnings and errors.
 
 #include <CGAL/Spherical_parameterization/IO/brain_surfaces.h>
 #include <CGAL/Spherical_parameterization/IO/read_polygon_soup.h>
@@ -30,7 +30,9 @@
 #include <condition_variable>
 #include <csignal>
 #include <cstdio>
+#include <cstdint>
 #include <cstdlib>
+#include <cstring>
 #include <filesystem>
 #include <fstream>
 #include <iomanip>
@@ -80,6 +82,12 @@ void print_usage(std::ostream& out)
          "      --float64         GIfTI output with float64 coordinates\n"
          "  A float32 output is certified again as written: if rounding folded a triangle, the run says so\n"
          "  (JSON \"written\") and exits 1.\n"
+         "      --overwrite       map again even if the output already answers this request. Without it, an\n"
+         "                        existing output is kept (exit 0, JSON \"skipped\": true) when it records a\n"
+         "                        successful run with the same weights, criterion, precision and radius, a\n"
+         "                        tolerance at least as tight, from this very input, and its coordinates pass\n"
+         "                        the certificate as stored; otherwise it is replaced (re-runs of a cohort\n"
+         "                        after a killed job redo only what is missing or unfinished)\n"
          "\n"
          "Method:\n"
          "  -w, --weights W       uniform (default; Tutte weights, covered by the theory, most robust),\n"
@@ -102,7 +110,8 @@ void print_usage(std::ostream& out)
          "\n"
          "What is printed:\n"
          "  -q, --quiet           nothing but errors (and the JSON object with --json)\n"
-         "      --json            the figures as one JSON object on stdout instead of text\n"
+         "      --json            the figures as one JSON object on one line of stdout instead of text (the\n"
+         "                        lines of many runs concatenate into a JSON Lines table)\n"
          "  -h, --help            this text\n"
          "Progress goes to stderr once a run takes more than a second: stage, iteration, Res, non-positive\n"
          "faces, elapsed time; on a terminal as one line rewritten in place, otherwise at most a line a second.\n"
@@ -118,7 +127,8 @@ void print_usage(std::ostream& out)
          "\n"
          "JSON object (--json), printed when the mesh was read (exit 0, 1 or 2); a figure not computed is null:\n"
          "  format (\"spherical_parameterize/1\"), input, output (null if nothing written), status (e.g. \"OK\",\n"
-         "  \"GENUS_NOT_ZERO\"), success, message, vertices, faces, weights, criterion, tolerance, max_imbalance,\n"
+         "  \"GENUS_NOT_ZERO\"), success, skipped (an existing output kept: most figures null), message,\n"
+         "  vertices, faces, weights, criterion, tolerance, max_imbalance,\n"
          "  imbalance_percentile_99, unbalanced_vertices, vertices_at_rounding_floor, residual (Res),\n"
          "  max_tangential_residual, flipped_faces, total_signed_area, bijective, initial_flipped_faces,\n"
          "  uniform_initial_guess_fallback, admissible_weights, raised_weights, clamped_weights, rejected_moves,\n"
@@ -343,6 +353,7 @@ struct Written_figures {
   bool certified = false;        // the written coordinates were certified (they differ from the certified map)
   std::size_t flipped_faces = 0;
   bool bijective = false;
+  double total_signed_area = 0.; // of the coordinates as written, when certified
 };
 
 struct Run_figures {
@@ -352,60 +363,62 @@ struct Run_figures {
   std::string criterion = "imbalance";
   double tolerance = 1e-6;
   double read_seconds = 0., map_seconds = 0., write_seconds = 0., total_seconds = 0.;
+  bool skipped = false;  // the output was already a certified answer to the same request, and was kept
 };
 
+// One line per run (JSON Lines), so that the figures of many runs concatenate into one table.
 void print_json(std::ostream& out, const SP::Result& r, const Run_figures& run)
 {
   const bool computed = r.residual >= 0.;  // the iterations ran (not an input or set-up error)
+  const bool certified = computed || run.skipped;  // a kept output was certified again
   auto stage = [](const SP::Stage_statistics& s) {
     return "{\"seconds\": " + json_number(s.seconds) + ", \"iterations\": " + json_count(s.iterations) +
            ", \"linear_iterations\": " + json_count(s.linear_iterations) +
            ", \"residual\": " + json_number(s.residual, s.residual >= 0.) + "}";
   };
-  out << "{\n"
-      << "  \"format\": \"spherical_parameterize/1\",\n"
-      << "  \"input\": " << json_string(run.input) << ",\n"
-      << "  \"output\": " << (run.output.empty() ? std::string("null") : json_string(run.output)) << ",\n"
-      << "  \"status\": " << json_string(SP::get_error_name(r.status)) << ",\n"
-      << "  \"success\": " << (r.status == SP::Error_code::OK ? "true" : "false") << ",\n"
-      << "  \"message\": " << json_string(r.message) << ",\n"
-      << "  \"vertices\": " << r.number_of_vertices << ",\n"
-      << "  \"faces\": " << r.number_of_faces << ",\n"
-      << "  \"weights\": " << json_string(run.weights) << ",\n"
-      << "  \"criterion\": " << json_string(run.criterion) << ",\n"
-      << "  \"tolerance\": " << json_number(run.tolerance) << ",\n"
-      << "  \"max_imbalance\": " << json_number(r.max_imbalance, computed) << ",\n"
-      << "  \"imbalance_percentile_99\": " << json_number(r.imbalance_percentile_99, computed) << ",\n"
-      << "  \"unbalanced_vertices\": " << json_count(r.unbalanced_vertices, computed) << ",\n"
-      << "  \"vertices_at_rounding_floor\": " << json_count(r.vertices_at_rounding_floor, computed) << ",\n"
-      << "  \"residual\": " << json_number(r.residual, computed) << ",\n"
-      << "  \"max_tangential_residual\": " << json_number(r.max_tangential_residual, computed) << ",\n"
-      << "  \"flipped_faces\": " << json_count(r.flipped_faces, computed) << ",\n"
-      << "  \"total_signed_area\": " << json_number(r.total_signed_area, computed) << ",\n"
-      << "  \"bijective\": " << (r.bijective ? "true" : "false") << ",\n"
-      << "  \"initial_flipped_faces\": " << json_count(r.initial_flipped_faces, computed) << ",\n"
-      << "  \"uniform_initial_guess_fallback\": " << (r.uniform_initial_guess_fallback ? "true" : "false") << ",\n"
-      << "  \"admissible_weights\": " << (r.admissible_weights ? "true" : "false") << ",\n"
-      << "  \"raised_weights\": " << r.raised_weights << ",\n"
-      << "  \"clamped_weights\": " << r.clamped_weights << ",\n"
-      << "  \"rejected_moves\": " << json_count(r.rejected_moves, computed) << ",\n"
-      << "  \"separator_size\": " << json_count(r.separator_size, computed) << ",\n"
-      << "  \"cut_loop_length\": " << json_count(r.cut_loop_length, computed) << ",\n"
-      << "  \"stages\": {\n"
-      << "    \"initial_guess\": " << stage(r.initial_guess) << ",\n"
-      << "    \"gauss_seidel\": " << stage(r.gauss_seidel) << ",\n"
-      << "    \"newton\": " << stage(r.newton) << "\n"
-      << "  },\n"
-      << "  \"written\": "
-      << (run.output.empty() ? std::string("null")
-                             : "{\"format\": " + json_string(run.written.format) + ", \"precision\": " + json_string(run.written.precision) +
-                                   ", \"radius\": " + json_number(run.written.radius) +
-                                   ", \"flipped_faces\": " + json_count(run.written.flipped_faces, run.written.certified) +
-                                   ", \"bijective\": " + (run.written.certified ? (run.written.bijective ? "true" : "false") : std::string("null")) + "}")
-      << ",\n"
-      << "  \"seconds\": {\"read\": " << json_number(run.read_seconds) << ", \"map\": " << json_number(run.map_seconds)
-      << ", \"write\": " << json_number(run.write_seconds) << ", \"total\": " << json_number(run.total_seconds) << "}\n"
-      << "}\n";
+  auto boolean = [](bool b) { return std::string(b ? "true" : "false"); };
+  const std::vector<std::pair<const char*, std::string>> fields = {
+    {"format", "\"spherical_parameterize/1\""},
+    {"input", json_string(run.input)},
+    {"output", run.output.empty() ? std::string("null") : json_string(run.output)},
+    {"status", json_string(SP::get_error_name(r.status))},
+    {"success", boolean(r.status == SP::Error_code::OK)},
+    {"skipped", boolean(run.skipped)},
+    {"message", json_string(r.message)},
+    {"vertices", std::to_string(r.number_of_vertices)},
+    {"faces", std::to_string(r.number_of_faces)},
+    {"weights", json_string(run.weights)},
+    {"criterion", json_string(run.criterion)},
+    {"tolerance", json_number(run.tolerance)},
+    {"max_imbalance", json_number(r.max_imbalance, computed)},
+    {"imbalance_percentile_99", json_number(r.imbalance_percentile_99, computed)},
+    {"unbalanced_vertices", json_count(r.unbalanced_vertices, computed)},
+    {"vertices_at_rounding_floor", json_count(r.vertices_at_rounding_floor, computed)},
+    {"residual", json_number(r.residual, computed)},
+    {"max_tangential_residual", json_number(r.max_tangential_residual, computed)},
+    {"flipped_faces", json_count(r.flipped_faces, certified)},
+    {"total_signed_area", json_number(r.total_signed_area, certified)},
+    {"bijective", boolean(r.bijective)},
+    {"initial_flipped_faces", json_count(r.initial_flipped_faces, computed)},
+    {"uniform_initial_guess_fallback", boolean(r.uniform_initial_guess_fallback)},
+    {"admissible_weights", boolean(r.admissible_weights)},
+    {"raised_weights", std::to_string(r.raised_weights)},
+    {"clamped_weights", std::to_string(r.clamped_weights)},
+    {"rejected_moves", json_count(r.rejected_moves, computed)},
+    {"separator_size", json_count(r.separator_size, computed)},
+    {"cut_loop_length", json_count(r.cut_loop_length, computed)},
+    {"stages", "{\"initial_guess\": " + stage(r.initial_guess) + ", \"gauss_seidel\": " + stage(r.gauss_seidel) +
+                   ", \"newton\": " + stage(r.newton) + "}"},
+    {"written", run.output.empty() ? std::string("null")
+                                   : "{\"format\": " + json_string(run.written.format) + ", \"precision\": " +
+                                         json_string(run.written.precision) + ", \"radius\": " + json_number(run.written.radius) +
+                                         ", \"flipped_faces\": " + json_count(run.written.flipped_faces, run.written.certified) +
+                                         ", \"bijective\": " + (run.written.certified ? boolean(run.written.bijective) : std::string("null")) + "}"},
+    {"seconds", "{\"read\": " + json_number(run.read_seconds) + ", \"map\": " + json_number(run.map_seconds) +
+                    ", \"write\": " + json_number(run.write_seconds) + ", \"total\": " + json_number(run.total_seconds) + "}"}};
+  std::string line = "{";
+  for(const auto& field : fields) line += (line.size() > 1 ? ", \"" : "\"") + std::string(field.first) + "\": " + field.second;
+  out << line << "}\n";
 }
 
 std::string plural(std::size_t n, const std::string& noun) { return std::to_string(n) + " " + noun + (n == 1 ? "" : "s"); }
@@ -414,6 +427,10 @@ void print_text(std::ostream& out, const SP::Result& r, const Run_figures& run)
 {
   out << "input:           " << run.input << " (" << r.number_of_vertices << " vertices, " << r.number_of_faces << " faces)\n"
       << "status:          " << SP::get_error_name(r.status) << ": " << r.message << "\n";
+  if(run.skipped)
+    out << "kept:            " << run.output << " (" << run.written.format << ", " << run.written.precision
+        << "; certified again: " << plural(run.written.flipped_faces, "flipped face") << (run.written.bijective ? ", bijective" : "")
+        << ")\n";
   if(r.residual < 0.) return;
   out << std::setprecision(4)
       << "max imbalance:   " << r.max_imbalance << " (99th percentile " << r.imbalance_percentile_99 << "; "
@@ -496,6 +513,7 @@ const Option options[] = {
   {"-o", "--output", "a file name: .off, .ply, .gii, or a FreeSurfer surface name"},
   {"", "--radius", "a positive number"},
   {"", "--float64", nullptr},
+  {"", "--overwrite", nullptr},
   {"-w", "--weights", "uniform, cotangent or mean_value"},
   {"-t", "--tolerance", "a positive number such as 1e-6"},
   {"", "--criterion", "imbalance or paper"},
@@ -568,6 +586,7 @@ struct Settings {
   long gauss_seidel_sweeps = -1;  // -1: the library's default
   int seed = 0;
   bool quiet = false, json = false, backtracking = true, sparse_lu = false, admissible = false, float64 = false;
+  bool overwrite = false;  // map again even when the output is already a certified answer to the same request
   double radius = 1.;
   SP::Nonlinear_solver solver = SP::Nonlinear_solver::GLOBAL_NEWTON;
 };
@@ -654,6 +673,7 @@ Settings parse_arguments(int argc, char** argv)
     else if(canonical == "--no-backtracking") settings.backtracking = false;
     else if(canonical == "--radius") settings.radius = positive_number(name, value);
     else if(canonical == "--float64") settings.float64 = true;
+    else if(canonical == "--overwrite") settings.overwrite = true;
     else if(canonical == "--admissible-weights") settings.admissible = true;
     else if(canonical == "--quiet") settings.quiet = true;
     else if(canonical == "--json") settings.json = true;
@@ -773,9 +793,168 @@ SP::IO::File_read read_input(const std::string& path, std::vector<Point>& points
   return SP::IO::read_polygon_soup(path, points, faces);
 }
 
+// --- Re-runs: an output that already answers the same request, and passes the certificate as stored, is kept. ---
+// Every output records the run that made it in one line its format keeps: a comment of OFF and PLY, the "created
+// by" line of a FreeSurfer surface, a metadata entry of a GIfTI file. A cohort re-run after a killed job then redoes
+// only what is missing or unfinished (a stopped run writes its best map with a status other than OK).
+const std::string stamp_tag = "spherical_parameterize/1";
+
+struct Run_stamp {
+  std::string status, weights, criterion, precision, input;
+  bool admissible = false;
+  double tolerance = 0., radius = 1.;
+};
+
+// FNV-1a (64 bits) of the coordinates' bits and the faces: an output is kept only for the very input it was made from.
+std::string input_fingerprint(const std::vector<Point>& points, const std::vector<std::vector<std::size_t>>& faces)
+{
+  std::uint64_t hash = 14695981039346656037ull;
+  auto add = [&hash](std::uint64_t value) {
+    for(int byte = 0; byte < 8; ++byte) {
+      hash ^= (value >> (8 * byte)) & 0xFF;
+      hash *= 1099511628211ull;
+    }
+  };
+  add(points.size());
+  for(const Point& p : points)
+    for(int k = 0; k < 3; ++k) {
+      const double c = p[k];
+      std::uint64_t bits;
+      std::memcpy(&bits, &c, 8);
+      add(bits);
+    }
+  add(faces.size());
+  for(const auto& f : faces) {
+    add(f.size());
+    for(std::size_t i : f) add(i);
+  }
+  std::ostringstream text;
+  text << std::hex << std::setw(16) << std::setfill('0') << hash;
+  return text.str();
+}
+
+// The shortest decimal form that reads back as the same double (1e-06, not 9.9999999999999995e-07).
+std::string round_trip(double x)
+{
+  for(int digits = 6;; ++digits) {  // from 6: 100, not 1e+02
+    std::ostringstream text;
+    text << std::setprecision(digits) << x;
+    if(digits >= 17 || std::strtod(text.str().c_str(), nullptr) == x) return text.str();
+  }
+}
+
+std::string format_stamp(const Run_stamp& stamp)
+{
+  std::ostringstream line;
+  line << stamp_tag << " status=" << stamp.status << " weights=" << stamp.weights
+       << " admissible=" << (stamp.admissible ? "yes" : "no") << " criterion=" << stamp.criterion << " tolerance=" << round_trip(stamp.tolerance)
+       << " precision=" << stamp.precision << " radius=" << round_trip(stamp.radius) << " input=" << stamp.input;
+  return line.str();
+}
+
+// Finds the stamp in `text` (a comment line, a "created by" line, a metadata value); false if there is none.
+bool parse_stamp(const std::string& text, Run_stamp& stamp)
+{
+  const std::size_t at = text.find(stamp_tag + " ");
+  if(at == std::string::npos) return false;
+  std::istringstream fields(text.substr(at + stamp_tag.size()));
+  std::string field;
+  int found = 0;
+  while(fields >> field) {
+    const std::size_t equal = field.find('=');
+    if(equal == std::string::npos) continue;
+    const std::string key = field.substr(0, equal), value = field.substr(equal + 1);
+    char* end = nullptr;
+    if(key == "status") stamp.status = value;
+    else if(key == "weights") stamp.weights = value;
+    else if(key == "criterion") stamp.criterion = value;
+    else if(key == "precision") stamp.precision = value;
+    else if(key == "input") stamp.input = value;
+    else if(key == "admissible") stamp.admissible = value == "yes";
+    else if(key == "tolerance") stamp.tolerance = std::strtod(value.c_str(), &end);
+    else if(key == "radius") stamp.radius = std::strtod(value.c_str(), &end);
+    else continue;
+    ++found;
+  }
+  return found == 8;
+}
+
+std::string output_precision(const std::string& format, const Settings& settings)
+{
+  return format == "freesurfer" || (format == "gifti" && !settings.float64) ? "float32" : "float64";
+}
+
+// An existing output as stored: its points, its faces and its stamp line ("" if it has none).
+SP::IO::File_read read_existing_output(const std::string& path, std::vector<Point>& points,
+                                       std::vector<std::vector<std::size_t>>& faces, std::string& stamp_line)
+{
+  stamp_line.clear();
+  const std::string format = output_format(path);
+  if(format == "gifti") {
+#ifdef CGAL_SPHERICAL_PARAMETERIZATION_USE_GIFTI
+    std::vector<std::pair<std::string, std::string>> metadata;
+    const SP::IO::File_read read = SP::IO::read_GIfTI_surface(path, points, faces, &metadata);
+    for(const auto& entry : metadata)
+      if(entry.first == "spherical_parameterize") stamp_line = entry.second;
+    return read;
+#else
+    return SP::IO::internal::file_error(SP::IO::File_status::UNKNOWN_FORMAT, "built without the GIFTI library");
+#endif
+  }
+  if(format == "freesurfer") {
+    if(!is_FreeSurfer_file(path)) return SP::IO::internal::file_error(SP::IO::File_status::INVALID_DATA, "not a FreeSurfer surface");
+    SP::IO::FreeSurfer_surface_info info;
+    const SP::IO::File_read read = SP::IO::read_FreeSurfer_surface(path, points, faces, &info);
+    stamp_line = info.created_by;
+    return read;
+  }
+  // OFF and PLY: the stamp is a comment line of the header.
+  std::ifstream in(path);
+  std::string line;
+  for(int k = 0; k < 16 && std::getline(in, line); ++k) {
+    if(line.find(stamp_tag) != std::string::npos) { stamp_line = line; break; }
+    if(line == "end_header") break;
+  }
+  return SP::IO::read_polygon_soup(path, points, faces);
+}
+
+// Why the existing `output` is not kept; empty when it is: it holds the stamp of a successful run with the same
+// weights, criterion, precision and radius and a tolerance at least as tight, made from this very input, the input's
+// vertices and faces, and coordinates that pass the certificate (exact orientations, degree 1) as they are stored.
+std::string reason_not_to_keep(const std::string& output, const Mesh& mesh, const std::vector<std::vector<std::size_t>>& faces,
+                               const std::string& fingerprint, const Settings& settings, Written_figures& kept)
+{
+  std::vector<Point> stored;
+  std::vector<std::vector<std::size_t>> stored_faces;
+  std::string stamp_line;
+  if(!read_existing_output(output, stored, stored_faces, stamp_line)) return "it cannot be read as a mesh";
+  Run_stamp stamp;
+  if(!parse_stamp(stamp_line, stamp)) return "it was not written by this program";
+  if(stamp.status != "OK") return "the run that wrote it ended with " + stamp.status;
+  const std::string format = output_format(output);
+  if(stamp.weights != settings.weights_name || stamp.admissible != settings.admissible || stamp.criterion != settings.criterion ||
+     !(stamp.tolerance <= settings.tolerance) || stamp.radius != settings.radius || stamp.precision != output_precision(format, settings))
+    return "it was made with other settings (" + stamp_line.substr(stamp_line.find(stamp_tag) + stamp_tag.size() + 1) + ")";
+  if(stamp.input != fingerprint) return "it was made from another input (or the input changed)";
+  if(stored.size() != num_vertices(mesh) || stored_faces != faces) return "its vertices or faces are not the input's";
+  const SP::Sphere_map_certificate certificate = SP::certify_sphere_map(
+      mesh, boost::make_iterator_property_map(stored.begin(), get(CGAL::vertex_index, mesh)));
+  if(!certificate.bijective)
+    return "its coordinates fail the certificate (" + plural(certificate.flipped_faces, "flipped face") + ")";
+  kept.format = format;
+  kept.precision = stamp.precision;
+  kept.radius = stamp.radius;
+  kept.certified = true;
+  kept.flipped_faces = certificate.flipped_faces;
+  kept.bijective = true;
+  kept.total_signed_area = certificate.total_signed_area;
+  return std::string();
+}
+
 // Writes to a temporary file next to `path`, then renames it: a failure never leaves a half-written file.
 bool write_sphere(const std::string& path, const std::vector<Point>& sphere, const std::vector<std::vector<std::size_t>>& faces,
-                  const SP::IO::FreeSurfer_surface_info& freesurfer_info, const Settings& settings, std::string& error)
+                  const SP::IO::FreeSurfer_surface_info& freesurfer_info, const Settings& settings, const std::string& stamp,
+                  std::string& error)
 {
   const std::string temporary = path + ".partial." + std::to_string(::getpid());
   {
@@ -792,7 +971,7 @@ bool write_sphere(const std::string& path, const std::vector<Point>& sphere, con
   const std::string format = output_format(path);
   if(format == "gifti") {
 #ifdef CGAL_SPHERICAL_PARAMETERIZATION_USE_GIFTI
-    if(!SP::IO::write_GIfTI_surface(temporary, sphere, faces, settings.float64, settings.radius, error)) {
+    if(!SP::IO::write_GIfTI_surface(temporary, sphere, faces, settings.float64, settings.radius, error, {{"spherical_parameterize", stamp}})) {
       std::remove(temporary.c_str());
       return false;
     }
@@ -803,7 +982,9 @@ bool write_sphere(const std::string& path, const std::vector<Point>& sphere, con
   } else if(format == "freesurfer") {
     std::ofstream out(temporary, std::ios::binary);
     if(!out) { error = "cannot open '" + temporary + "' for writing"; return false; }
-    const bool written = SP::IO::write_FreeSurfer_surface(out, sphere, faces, freesurfer_info, settings.radius);
+    SP::IO::FreeSurfer_surface_info info = freesurfer_info;  // the input's tags (volume geometry) go on
+    info.created_by = "created by " + stamp;
+    const bool written = SP::IO::write_FreeSurfer_surface(out, sphere, faces, info, settings.radius);
     out.flush();
     if(!written || !out) { error = "writing '" + temporary + "' failed"; std::remove(temporary.c_str()); return false; }
   } else {
@@ -811,10 +992,10 @@ bool write_sphere(const std::string& path, const std::vector<Point>& sphere, con
     if(!out) { error = "cannot open '" + temporary + "' for writing"; return false; }
     out << std::setprecision(17);
     if(format == "ply") {
-      out << "ply\nformat ascii 1.0\nelement vertex " << sphere.size() << "\nproperty double x\nproperty double y\n"
+      out << "ply\nformat ascii 1.0\ncomment " << stamp << "\nelement vertex " << sphere.size() << "\nproperty double x\nproperty double y\n"
           << "property double z\nelement face " << faces.size() << "\nproperty list uchar int vertex_indices\nend_header\n";
     } else {
-      out << "OFF\n" << sphere.size() << ' ' << faces.size() << " 0\n";
+      out << "OFF\n# " << stamp << "\n" << sphere.size() << ' ' << faces.size() << " 0\n";
     }
     const double r = settings.radius;
     for(const Point& p : sphere) out << r * p.x() << ' ' << r * p.y() << ' ' << r * p.z() << '\n';
@@ -892,6 +1073,35 @@ int main(int argc, char** argv)
   Mesh mesh;
   CGAL::Polygon_mesh_processing::polygon_soup_to_polygon_mesh(points, faces, mesh);
 
+  const std::string fingerprint = input_fingerprint(points, faces);
+  if(!settings.overwrite && std::filesystem::exists(output)) {
+    progress.phase("certifying the existing " + output);
+    Written_figures kept;
+    const std::string reason = reason_not_to_keep(output, mesh, faces, fingerprint, settings, kept);
+    if(reason.empty()) {
+      SP::Result done;
+      done.status = SP::Error_code::OK;
+      done.message = "Kept: the output already answers this request (a successful run with these settings, from this "
+                     "input) and passes the certificate as stored; --overwrite maps again";
+      done.number_of_vertices = points.size();
+      done.number_of_faces = faces.size();
+      done.bijective = true;
+      done.flipped_faces = 0;
+      done.total_signed_area = kept.total_signed_area;
+      done.admissible_weights = settings.admissible;
+      run.output = output;
+      run.skipped = true;
+      run.written = kept;
+      run.total_seconds = seconds_since(start);
+      progress.clear();
+      if(settings.json) print_json(std::cout, done, run);
+      else if(!settings.quiet) print_text(std::cout, done, run);
+      return EXIT_OK;
+    }
+    progress.clear();
+    if(!settings.quiet) std::cerr << "note: mapping again: the existing '" << output << "' is not kept: " << reason << "\n";
+  }
+
   auto sphere_map = mesh.add_property_map<Mesh::Vertex_index, Point>("v:sphere", Point(0, 0, 0)).first;
   // The first report comes after stage 1: from then on a stop signal keeps the best map.
   auto report = [&progress](const SP::Progress& p) {
@@ -928,7 +1138,16 @@ int main(int argc, char** argv)
     std::vector<Point> sphere(points.size());
     for(Mesh::Vertex_index v : mesh.vertices()) sphere[static_cast<std::size_t>(v)] = sphere_map[v];
     std::string error;
-    if(!write_sphere(output, sphere, faces, freesurfer_info, settings, error)) { progress.clear(); std::cerr << "error: " << error << "\n"; return EXIT_IO; }
+    Run_stamp stamp;
+    stamp.status = SP::get_error_name(result.status);
+    stamp.weights = settings.weights_name;
+    stamp.admissible = settings.admissible;
+    stamp.criterion = settings.criterion;
+    stamp.tolerance = settings.tolerance;
+    stamp.precision = output_precision(output_format(output), settings);
+    stamp.radius = settings.radius;
+    stamp.input = fingerprint;
+    if(!write_sphere(output, sphere, faces, freesurfer_info, settings, format_stamp(stamp), error)) { progress.clear(); std::cerr << "error: " << error << "\n"; return EXIT_IO; }
     run.output = output;
     run.written = certify_as_written(mesh, sphere, output_format(output), settings);
     run.write_seconds = seconds_since(write_start);

@@ -49,6 +49,14 @@ check(f is not None and f["written"] == {"format": "freesurfer", "precision": "f
       "FreeSurfer -> FreeSurfer, radius 100, certified as written: %s" % (f and f["written"]))
 check(v_out.shape == v_in.shape and (t_out == t_in).all(), "FreeSurfer output keeps the vertex count and the triangles")
 check(on_sphere(v_out, 100., 1e-6), "FreeSurfer output on the sphere of radius 100 (float32)")
+_, _, _, created_by = nib.freesurfer.read_geometry(out, read_metadata=True, read_stamp=True)
+check(created_by.startswith("created by spherical_parameterize/1 status=OK") and "radius=100 " in created_by,
+      "FreeSurfer output records the run in its created-by line: %s" % created_by)
+again = run([source, "-o", out, "--radius", "100"], 0)
+check(again is not None and again["skipped"] is True, "FreeSurfer output kept by a re-run")
+again = run([source, "-o", out], 0)
+check(again is not None and again["skipped"] is False, "FreeSurfer output mapped again for another radius")
+f = run([source, "-o", out, "--radius", "100"], 0)
 
 # GIfTI in, GIfTI out, float32 and float64.
 source = os.path.join(formats, "lh.conte69.surf.gii")
@@ -61,6 +69,12 @@ for extra, dtype in (([], np.float32), (["--float64"], np.float64)):
           "GIfTI -> GIfTI %s: %s" % (dtype.__name__, f and f["written"]))
     check(p_out.dtype == dtype and p_out.shape == p_in.shape and (t_out == t_in).all(), "GIfTI output: dtype, vertex count, triangles")
     check(on_sphere(p_out, 1., 1e-6 if dtype == np.float32 else 1e-14), "GIfTI output on the unit sphere")
+    stamp = nib.load(out).meta.get("spherical_parameterize", "")
+    check(stamp.startswith("spherical_parameterize/1 status=OK") and ("precision=%s" % dtype.__name__) in stamp,
+          "GIfTI output records the run in its metadata: %s" % stamp)
+    again = run([source, "-o", out] + extra, 0)
+    check(again is not None and again["skipped"] is True and again["written"]["bijective"] is True,
+          "GIfTI %s output kept by a re-run, certified as stored" % dtype.__name__)
 
 # GIfTI encodings and byte orders the package did not write: ASCII, base64, gzip-base64, big-endian.
 points, triangles = p_in.astype(np.float32), t_in.astype(np.int32)

@@ -17,8 +17,8 @@ grep -q "Usage: spherical_parameterize" "$scratch/help.txt" || { echo "FAIL: --h
 # Same face list, same number of vertices, every vertex on the unit sphere, 17 significant digits.
 python3 - "$bunny" "$scratch/bunny_sphere.off" <<'PY' || failures=$((failures + 1))
 import sys
-def read(path):
-    tokens = open(path).read().split()
+def read(path):  # OFF, '#' comments allowed (the output's first comment records the run)
+    tokens = " ".join(line.split("#")[0] for line in open(path)).split()
     assert tokens[0] == "OFF"
     nv, nf = int(tokens[1]), int(tokens[2])
     coords = tokens[4:4 + 3 * nv]
@@ -198,7 +198,7 @@ python3 -c "import json,sys; o=json.load(open(sys.argv[1])); assert o['admissibl
 check "--json on an invalid mesh" 2 $?
 python3 - "$scratch/good.json" "$scratch/bad.json" "$scratch/json.off" <<'JSON_CHECK' || failures=$((failures + 1))
 import json, math, os, sys
-keys = {"format", "input", "output", "status", "success", "message", "vertices", "faces", "weights", "criterion", "tolerance",
+keys = {"format", "input", "output", "status", "success", "skipped", "message", "vertices", "faces", "weights", "criterion", "tolerance",
         "max_imbalance", "imbalance_percentile_99", "unbalanced_vertices", "vertices_at_rounding_floor",
         "residual", "max_tangential_residual", "flipped_faces", "total_signed_area", "bijective",
         "initial_flipped_faces", "uniform_initial_guess_fallback", "admissible_weights", "raised_weights", "clamped_weights",
@@ -289,7 +289,7 @@ for mesh, weights in cases:
         written = os.path.exists(out)
         complete = False
         if written:
-            tokens = open(out).read().split()
+            tokens = " ".join(line.split("#")[0] for line in open(out)).split()
             nv, nf = int(tokens[1]), int(tokens[2])
             complete = tokens[0] == "OFF" and len(tokens) == 4 + 3 * nv + 4 * nf
         good = took <= 2.0 and not leftovers and ((code in (0, 1) and complete) or (code == 128 + signal.SIGTERM and not written))
@@ -301,6 +301,40 @@ for mesh, weights in cases:
 print("%s: SIGTERM at random moments, %d runs, exit codes %s" % ("ok" if problems == 0 else "FAIL", sum(outcomes.values()), outcomes))
 sys.exit(1 if problems else 0)
 SIGTERM_CHECK
+
+# Re-runs keep an output that is a certified answer to the same request, and map again otherwise.
+kept="$scratch/kept.off"
+"$tool" "$bunny" -o "$kept" -q; check "re-runs: first run" 0 $?
+before=$(stat -c '%i %Y.%y' "$kept")
+"$tool" "$bunny" -o "$kept" --json > "$scratch/kept.json" 2> "$scratch/kept.err"; check "re-runs: same request kept" 0 $?
+[ "$before" = "$(stat -c '%i %Y.%y' "$kept")" ] || { echo "FAIL: a kept output was rewritten"; failures=$((failures + 1)); }
+python3 -c 'import json, sys; o = json.load(open(sys.argv[1])); assert o["skipped"] is True and o["status"] == "OK" and o["bijective"] and o["flipped_faces"] == 0, o' \
+  "$scratch/kept.json" || { echo "FAIL: JSON of a kept output"; failures=$((failures + 1)); }
+"$tool" "$bunny" -o "$kept" -t 1e-3 --json | grep -q '"skipped": true' || { echo "FAIL: a looser tolerance keeps the output"; failures=$((failures + 1)); }
+remapped() {  # description, then the tool's arguments: the run must map again (skipped false) and say why
+  local what=$1; shift
+  "$tool" "$@" --json > "$scratch/remap.json" 2> "$scratch/remap.err"
+  if grep -q '"skipped": false' "$scratch/remap.json" && { [[ " $* " == *" --overwrite "* ]] || grep -q "is not kept: $what" "$scratch/remap.err"; }; then
+    echo "ok: re-runs: mapped again ($what)"
+  else
+    echo "FAIL: re-runs: not mapped again ($what): $(cat "$scratch/remap.err")"; failures=$((failures + 1))
+  fi
+}
+remapped "--overwrite" "$bunny" -o "$kept" --overwrite
+remapped "it was made with other settings" "$bunny" -o "$kept" -t 1e-9
+remapped "it was made from another input" "$shared/trimesh_fuze.off" -o "$kept"
+remapped "it was made with other settings" "$bunny" -o "$kept" -w cotangent
+# A fold in the stored coordinates (two vertices swapped, faces and stamp untouched) fails the certificate.
+"$tool" "$bunny" -o "$kept" -q --overwrite
+python3 - "$kept" <<'SWAP'
+import sys
+lines = open(sys.argv[1]).read().split("\n")
+lines[3], lines[4] = lines[4], lines[3]  # the first two vertices (after "OFF", the stamp, the counts)
+open(sys.argv[1], "w").write("\n".join(lines))
+SWAP
+remapped "its coordinates fail the certificate" "$bunny" -o "$kept"
+sed -i '2d' "$kept"  # the stamp removed: a file this program did not write (or wrote before stamps)
+remapped "it was not written by this program" "$bunny" -o "$kept"
 
 echo "$failures failed"
 [ "$failures" -eq 0 ]

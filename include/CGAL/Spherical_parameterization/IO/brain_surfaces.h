@@ -19,6 +19,7 @@ extern "C" {  // a C library whose header does not say so
 #include <cstring>
 #include <ostream>
 #include <string>
+#include <utility>
 #include <vector>
 
 namespace CGAL {
@@ -161,9 +162,11 @@ bool write_FreeSurfer_surface(std::ostream& out, const std::vector<Point>& point
 #ifdef CGAL_SPHERICAL_PARAMETERIZATION_USE_GIFTI
 /// \ingroup PkgSphericalParameterizationRef
 /// Reads a GIfTI surface (`.surf.gii`: a POINTSET array of n x 3 coordinates and a TRIANGLE array of m x 3
-/// indices, in any encoding and byte order the GIFTI library reads) with Debian's GIFTI library.
+/// indices, in any encoding and byte order the GIFTI library reads) with Debian's GIFTI library. `metadata`, when
+/// given, receives the file's metadata (name, value pairs of the GIfTI element).
 template <typename Point, typename Polygon>
-File_read read_GIfTI_surface(const std::string& path, std::vector<Point>& points, std::vector<Polygon>& polygons)
+File_read read_GIfTI_surface(const std::string& path, std::vector<Point>& points, std::vector<Polygon>& polygons,
+                             std::vector<std::pair<std::string, std::string>>* metadata = nullptr)
 {
   using internal::file_error;
   points.clear();
@@ -223,6 +226,11 @@ File_read read_GIfTI_surface(const std::string& path, std::vector<Point>& points
     polygons.push_back(std::move(polygon));
   }
   if(points.empty()) return file_error(File_status::EMPTY_FILE, path + ": the surface has no vertex");
+  if(metadata != nullptr) {
+    metadata->clear();
+    for(int k = 0; k < image->meta.length; ++k)
+      if(image->meta.name[k] != nullptr && image->meta.value[k] != nullptr) metadata->emplace_back(image->meta.name[k], image->meta.value[k]);
+  }
   File_read read;
   read.message = std::to_string(points.size()) + " vertices, " + std::to_string(polygons.size()) + " faces";
   return read;
@@ -230,15 +238,22 @@ File_read read_GIfTI_surface(const std::string& path, std::vector<Point>& points
 
 /// \ingroup PkgSphericalParameterizationRef
 /// Writes a GIfTI surface: POINTSET (float32, or float64 when `float64`; times `radius`) and TRIANGLE (int32)
-/// arrays, row-major, gzip-compressed base64, with the GIFTI library. Returns false with `error` set on failure.
+/// arrays, row-major, gzip-compressed base64, with the GIFTI library, and `metadata` (name, value pairs) in the
+/// GIfTI element's metadata. Returns false with `error` set on failure.
 template <typename Point, typename Polygon>
 bool write_GIfTI_surface(const std::string& path, const std::vector<Point>& points, const std::vector<Polygon>& triangles,
-                         bool float64, double radius, std::string& error)
+                         bool float64, double radius, std::string& error,
+                         const std::vector<std::pair<std::string, std::string>>& metadata = {})
 {
   gifti_set_verb(0);
   gifti_image* image = gifti_create_image(0, 0, 0, 0, nullptr, 0);
   if(image == nullptr) { error = "the GIFTI library could not create an image"; return false; }
   struct Release { gifti_image* image; ~Release() { gifti_free_image(image); } } release{image};
+  for(const auto& entry : metadata)
+    if(gifti_add_to_meta(&image->meta, entry.first.c_str(), entry.second.c_str(), 1) != 0) {
+      error = "the GIFTI library could not add the metadata '" + entry.first + "'";
+      return false;
+    }
   if(gifti_add_empty_darray(image, 2) != 0) { error = "the GIFTI library could not add the arrays"; return false; }
   giiDataArray* arrays[2] = {image->darray[0], image->darray[1]};
   const int intents[2] = {NIFTI_INTENT_POINTSET, NIFTI_INTENT_TRIANGLE};
