@@ -14,12 +14,12 @@ cmake -S . -B "$build" -DCMAKE_BUILD_TYPE=Release >/dev/null
 
 # CGAL's sample meshes (the paper's triceratops, bunny00, man...) ship in libcgal-demo's data.tar.gz.
 data=/usr/share/doc/libcgal-dev/data.tar.gz
-if [ -f "$data" ] && [ ! -f "$build/cgal_data/data/meshes/nefertiti.off" ]; then
+if [ -f "$data" ] && [ ! -f "$build/cgal_data/data/meshes/sphere966.off" ]; then
   mkdir -p "$build/cgal_data"
   tar xzf "$data" -C "$build/cgal_data" \
     data/meshes/triceratops.off data/meshes/cow.off data/meshes/homer.off data/meshes/bear.off \
     data/meshes/man.off data/meshes/armadillo.off data/meshes/bunny00.off \
-    data/meshes/nefertiti.off
+    data/meshes/handle.off data/meshes/sphere966.off data/meshes/nefertiti.off
 fi
 
 # Two jobs at most: one CGAL + Eigen translation unit needs about 1 GB and a minute.

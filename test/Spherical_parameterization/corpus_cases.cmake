@@ -1,7 +1,8 @@
 # One ctest case per mesh and weighting. Cases of the list below that take minutes carry the label "slow",
 # which scripts/run_tests.sh (and so CI) leaves out; run them with `ctest -L slow`.
 file(GLOB SP_SHARED_CORPUS "${SPHERICAL_PARAMETERIZATION_SHARED_MESHES}/*.off")
-set(SP_CGAL_CORPUS triceratops cow homer bear man armadillo bunny00)
+# handle and sphere966: small, but their iterates collapsed onto a point until 2026-11-24.
+set(SP_CGAL_CORPUS triceratops cow homer bear man armadillo bunny00 handle sphere966)
 set(SP_SLOW_CASES "")
 
 # A missing corpus must fail the run, not silently shrink it.

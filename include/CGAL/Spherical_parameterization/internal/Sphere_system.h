@@ -319,6 +319,21 @@ inline Vertex_imbalance vertex_imbalance(const Sphere_system& system, const std:
   return result;
 }
 
+// A scale-free measure of how far the whole map is from balanced: the root mean square of the imbalances e_i.
+// The paper's Res measures the forces in absolute terms, so any shrinking of the map lowers it and the trivial
+// collapse onto a point has Res = 0: the iterate of lowest Res, or a line search on Res, can prefer a collapse
+// (CGAL's handle and sphere966 ended collapsed onto a point, Res 1e-17, max imbalance 0.44 and 0.56). A collapse
+// keeps the imbalances near 0.5.
+inline double imbalance_merit(const Sphere_system& system, const std::vector<Vector3>& x)
+{
+  double sum = 0.;
+  for(std::size_t i = 0; i < system.number_of_vertices; ++i) {
+    const double e = vertex_imbalance(system, x, i).imbalance;
+    sum += e * e;
+  }
+  return std::sqrt(sum / static_cast<double>(std::max<std::size_t>(system.number_of_vertices, 1)));
+}
+
 struct Imbalance_summary {
   double max = 0.;                          // max_i e_i
   double percentile_99 = 0.;                // the 99th percentile of e_i (when the values were asked for)

@@ -5,7 +5,7 @@
 // tangent coordinates (tangent_newton_system.h), (3) splits the step into its rotation part (dropped: rotations
 // change nothing), its boost part (applied as an exact boost, whose linearization is poor) and the rest (added
 // and projected back onto the sphere), and (4) shortens the step until every positive triangle stays positive
-// (exact predicate) and the paper's Res decreases; when no such step exists, five of the paper's local Newton
+// (exact predicate) and the merit decreases (Step_merit); when no such step exists, five of the paper's local Newton
 // sweeps move the iterate instead. When the steps keep being cut short, it gives up and restores its best
 // iterate, so that another strategy can continue (global_newton.h).
 
@@ -71,9 +71,15 @@ inline bool has_degree_one(const Sphere_system& system, const std::vector<Vector
 // steps, where steps shortened to keep every triangle positive crawl (thin limbs: the first steps fold some tiny
 // triangles wherever they go). It gives up after `patience` iterations without convergence, when no step lowers
 // Res, or on a balanced map that is folded (a balanced map of degree 1 need not be bijective).
+// What the line search lowers. Res suits the steps where thin parts must shrink by orders of magnitude on the way
+// (their imbalances rise for a while: camel, man and four others of the 66 meshes fail when every step must lower
+// them), but any shrinking of the map lowers Res too, and on some meshes the steps then slide along the boosts
+// towards a collapse (CGAL's handle). The imbalances (imbalance_merit) are scale-free: a collapse does not lower them.
+enum class Step_merit { RESIDUAL, IMBALANCE };
+
 inline Iteration_report mobius_newton(Sphere_state& state, const Iteration_options& options, const Stopwatch& clock,
                                       Mobius_newton_statistics* statistics = nullptr, std::size_t patience = 3,
-                                      bool allow_folds = false)
+                                      bool allow_folds = false, Step_merit step_merit = Step_merit::RESIDUAL)
 {
   Iteration_report report;
   Mobius_newton_statistics counts;
@@ -93,10 +99,15 @@ inline Iteration_report mobius_newton(Sphere_state& state, const Iteration_optio
   double forcing = newton_max_forcing;
   std::vector<Vector3> step, trial(n);
   double residual = compute_residuals(system, x).paper;
-  // The best iterate: lowest Res among those with the fewest non-positive faces.
+  auto merit_of = [&](const std::vector<Vector3>& y) {
+    return step_merit == Step_merit::IMBALANCE ? imbalance_merit(system, y) : compute_residuals(system, y).paper;
+  };
+  double merit = merit_of(x);  // what the line search lowers
+  // The best iterate: the lowest imbalances among those with the fewest non-positive faces (never Res: the
+  // iterate of lowest Res can be the most collapsed one).
   const std::vector<Vector3> start = x;
   std::vector<Vector3> best = x;
-  double best_residual = residual;
+  double best_merit = imbalance_merit(system, x);
   std::size_t best_invalid = state.invalid_faces();
   std::size_t short_steps = 0;
   std::vector<double> history;
@@ -114,6 +125,7 @@ inline Iteration_report mobius_newton(Sphere_state& state, const Iteration_optio
     if(options.cancel_requested()) { report.cancelled = true; break; }
     const double previous_residual = residual;
     residual = compute_residuals(system, x).paper;
+    merit = merit_of(x);
 
     double accepted_t = 0.;
     bool has_step = false;
@@ -133,10 +145,11 @@ inline Iteration_report mobius_newton(Sphere_state& state, const Iteration_optio
           trial[i] = apply_boost(y * (1. / length(y)), t * boost);
         }
         if(allow_folds ? !has_degree_one(system, trial) : options.preserve_bijectivity && !state.keeps_positive_faces(trial)) continue;
-        const double trial_residual = compute_residuals(system, trial).paper;
-        if(trial_residual < residual) {
+        const double trial_merit = merit_of(trial);
+        if(trial_merit < merit) {
           state.assign(trial);
-          residual = trial_residual;
+          merit = trial_merit;
+          residual = compute_residuals(system, x).paper;
           accepted_t = t;
           ++counts.newton_steps;
           if(t == 1.) ++counts.full_steps;
@@ -165,11 +178,13 @@ inline Iteration_report mobius_newton(Sphere_state& state, const Iteration_optio
           if(!local_newton_step(state, i, options.preserve_bijectivity)) ++report.rejected_moves;
       state.refresh_sums();
       residual = compute_residuals(system, x).paper;
+      merit = merit_of(x);
     }
     ++report.sweeps;
-    if(state.invalid_faces() < best_invalid || (state.invalid_faces() == best_invalid && residual < best_residual)) {
+    const double current_merit = imbalance_merit(system, x);
+    if(state.invalid_faces() < best_invalid || (state.invalid_faces() == best_invalid && current_merit < best_merit)) {
       best = x;
-      best_residual = residual;
+      best_merit = current_merit;
       best_invalid = state.invalid_faces();
     }
     if(options.progress && !options.progress("global newton", report.sweeps, residual, state.invalid_faces())) {
