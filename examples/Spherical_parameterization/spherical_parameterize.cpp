@@ -104,8 +104,13 @@ void print_usage(std::ostream& out)
          "                        still far from balanced)\n"
          "  -s, --solver S        stage 3: global (Newton on all vertices at once, default) or local (the paper's)\n"
          "      --disk-solver D   linear solver of the disk stage: amg (default) or sparse_lu (Eigen)\n"
-         "      --max-seconds S   time budget of the iterations, S > 0 (default: none)\n"
+         "      --max-seconds S   time budget of the map (stage 1 included; reading and writing are outside),\n"
+         "                        S > 0 (default: none); then the best map so far is written (exit 1)\n"
          "      --seed N          METIS seed, an integer (default 0); the same seed gives the same output\n"
+         "      --start S         where the iterations start on large meshes (uniform weights, global solver):\n"
+         "                        multilevel (default: a coarser mesh solved first, its map carried back) or\n"
+         "                        two_disks (the paper's initial guess on the mesh itself)\n"
+         "      --verbose         the library's figures of every stage and level on stderr\n"
          "      --no-backtracking let moves fold triangles (the paper's plain iterations; for experiments)\n"
          "\n"
          "What is printed:\n"
@@ -132,7 +137,8 @@ void print_usage(std::ostream& out)
          "  imbalance_percentile_99, unbalanced_vertices, vertices_at_rounding_floor, residual (Res),\n"
          "  max_tangential_residual, flipped_faces, total_signed_area, bijective, initial_flipped_faces,\n"
          "  uniform_initial_guess_fallback, admissible_weights, raised_weights, clamped_weights, rejected_moves,\n"
-         "  separator_size, cut_loop_length,\n"
+         "  separator_size, cut_loop_length, levels (the multilevel start, coarsest first, [] when not used:\n"
+         "  [{vertices,newton_steps,linear_iterations,seconds}, ...]),\n"
          "  stages.{initial_guess,gauss_seidel,newton}.{seconds,iterations,linear_iterations,residual},\n"
          "  written.{format,precision,radius,flipped_faces,bijective} (the coordinates as written; null if\n"
          "  nothing was written; flipped_faces null when they are the certified ones),\n"
@@ -366,6 +372,17 @@ struct Run_figures {
   bool skipped = false;  // the output was already a certified answer to the same request, and was kept
 };
 
+// The multilevel start's levels, coarsest first: [{"vertices": .., "newton_steps": .., ...}, ...].
+std::string levels_json(const SP::Result& r)
+{
+  std::string text = "[";
+  for(const SP::Level_statistics& level : r.levels)
+    text += std::string(text.size() > 1 ? ", " : "") + "{\"vertices\": " + std::to_string(level.vertices) +
+            ", \"newton_steps\": " + std::to_string(level.newton_steps) + ", \"linear_iterations\": " +
+            std::to_string(level.linear_iterations) + ", \"seconds\": " + json_number(level.seconds) + "}";
+  return text + "]";
+}
+
 // One line per run (JSON Lines), so that the figures of many runs concatenate into one table.
 void print_json(std::ostream& out, const SP::Result& r, const Run_figures& run)
 {
@@ -407,6 +424,7 @@ void print_json(std::ostream& out, const SP::Result& r, const Run_figures& run)
     {"rejected_moves", json_count(r.rejected_moves, computed)},
     {"separator_size", json_count(r.separator_size, computed)},
     {"cut_loop_length", json_count(r.cut_loop_length, computed)},
+    {"levels", levels_json(r)},
     {"stages", "{\"initial_guess\": " + stage(r.initial_guess) + ", \"gauss_seidel\": " + stage(r.gauss_seidel) +
                    ", \"newton\": " + stage(r.newton) + "}"},
     {"written", run.output.empty() ? std::string("null")
@@ -444,8 +462,16 @@ void print_text(std::ostream& out, const SP::Result& r, const Run_figures& run)
       << "total area:      " << r.total_signed_area << " (4 pi = 12.5663706144)\n"
       << std::setprecision(3)
       << "stage 1:         initial guess, " << r.initial_guess.seconds << " s, Res " << r.initial_guess.residual << ", "
-      << plural(r.initial_flipped_faces, "non-positive face") << ", cut loop of " << r.cut_loop_length << " vertices"
-      << (r.uniform_initial_guess_fallback ? ", uniform-weight disks" : "") << "\n"
+      << plural(r.initial_flipped_faces, "non-positive face");
+  if(r.levels.empty())
+    out << ", cut loop of " << r.cut_loop_length << " vertices" << (r.uniform_initial_guess_fallback ? ", uniform-weight disks" : "");
+  else {
+    out << ", multilevel start: ";
+    for(std::size_t l = 0; l < r.levels.size(); ++l)
+      out << (l > 0 ? " -> " : "") << r.levels[l].vertices << " vertices (" << plural(r.levels[l].newton_steps, "Newton step") << ", "
+          << r.levels[l].seconds << " s)";
+  }
+  out << "\n"
       << "stage 2:         projected Gauss-Seidel, " << r.gauss_seidel.seconds << " s, "
       << plural(r.gauss_seidel.iterations, "sweep") << ", Res " << r.gauss_seidel.residual << "\n"
       << "stage 3:         Newton, " << r.newton.seconds << " s, " << plural(r.newton.iterations, "iteration")
@@ -523,6 +549,8 @@ const Option options[] = {
   {"", "--max-seconds", "a positive number of seconds"},
   {"", "--seed", "an integer"},
   {"", "--no-backtracking", nullptr},
+  {"", "--start", "multilevel or two_disks"},
+  {"", "--verbose", nullptr},
   {"", "--admissible-weights", nullptr},
   {"-q", "--quiet", nullptr},
   {"", "--json", nullptr},
@@ -587,6 +615,7 @@ struct Settings {
   int seed = 0;
   bool quiet = false, json = false, backtracking = true, sparse_lu = false, admissible = false, float64 = false;
   bool overwrite = false;  // map again even when the output is already a certified answer to the same request
+  bool multilevel = true, verbose = false;
   double radius = 1.;
   SP::Nonlinear_solver solver = SP::Nonlinear_solver::GLOBAL_NEWTON;
 };
@@ -671,6 +700,8 @@ Settings parse_arguments(int argc, char** argv)
                                                                               : SP::Nonlinear_solver::GLOBAL_NEWTON;
     else if(canonical == "--disk-solver") settings.sparse_lu = choice(canonical, value, {"amg", "sparse_lu"}) == "sparse_lu";
     else if(canonical == "--no-backtracking") settings.backtracking = false;
+    else if(canonical == "--start") settings.multilevel = choice(canonical, value, {"multilevel", "two_disks"}) == "multilevel";
+    else if(canonical == "--verbose") settings.verbose = true;
     else if(canonical == "--radius") settings.radius = positive_number(name, value);
     else if(canonical == "--float64") settings.float64 = true;
     else if(canonical == "--overwrite") settings.overwrite = true;
@@ -1118,6 +1149,7 @@ int main(int argc, char** argv)
                               SP::parameters::preserve_bijectivity(settings.backtracking),
                               SP::parameters::nonlinear_solver(settings.solver), SP::parameters::progress_callback(report),
                               SP::parameters::admissible_weights(settings.admissible),
+                              SP::parameters::multilevel(settings.multilevel), CGAL::parameters::verbose(settings.verbose),
                               SP::parameters::convergence_test(settings.criterion == "paper" ? SP::Convergence_test::PAPER_RESIDUAL
                                                                                              : SP::Convergence_test::IMBALANCE));
   progress.phase("input checks, then stage 1/3, initial guess");

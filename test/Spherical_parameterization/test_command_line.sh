@@ -203,7 +203,7 @@ keys = {"format", "input", "output", "status", "success", "skipped", "message", 
         "residual", "max_tangential_residual", "flipped_faces", "total_signed_area", "bijective",
         "initial_flipped_faces", "uniform_initial_guess_fallback", "admissible_weights", "raised_weights", "clamped_weights",
         "rejected_moves", "separator_size",
-        "cut_loop_length", "stages", "written", "seconds"}
+        "cut_loop_length", "levels", "stages", "written", "seconds"}
 good = json.load(open(sys.argv[1]))
 bad = json.load(open(sys.argv[2]))
 for name, o in (("good", good), ("bad", bad)):

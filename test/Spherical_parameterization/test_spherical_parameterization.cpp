@@ -624,6 +624,60 @@ TEST(NewtonKrylov, FullStepsConvergeWithFewMinresIterations)
   EXPECT_LT(imbalance[m - 2], 1e-2 * imbalance[m - 3]);
 }
 
+// The multilevel start's coarsening keeps a valid closed genus-0 mesh, and the way back keeps a bijective coarse map
+// bijective: each removed vertex is inserted where its fan is positive (up to rounding on the tiniest triangles).
+TEST(Multilevel, CoarseningAndProlongationKeepGenusZeroAndPositiveFans)
+{
+  for(const char* name : {"/gary_david.off", "/oded_springer.off"}) {
+    const SPI::Mesh_arrays arrays = arrays_of(read_mesh(shared_meshes + name));
+    const std::size_t n = arrays.points.size();
+    const SPI::Coarsening coarsening = SPI::coarsen_mesh(arrays, n / 4);
+    const std::size_t kept = coarsening.coarse.points.size();
+    EXPECT_EQ(kept + coarsening.removed.size(), n) << name;
+    EXPECT_LE(kept, n / 4 + n / 50) << name << ": the collapses stopped early";
+    EXPECT_EQ(coarsening.coarse.triangles.size(), 2 * kept - 4) << name << ": Euler's formula for genus 0";
+    const SP::Input_check check = SPI::check_mesh_arrays(coarsening.coarse);
+    EXPECT_TRUE(check) << name << ": " << check.message;
+    SPI::Sphere_system coarse_system = system_of(coarsening.coarse);
+    std::vector<SPI::Vector3> coarse_x;
+    SPI::Pipeline_options options;
+    options.multilevel = false;
+    const SP::Result coarse = SPI::run_pipeline(coarsening.coarse, coarse_system, options,
+                                                SP::Default_disk_solver_traits(), coarse_x);
+    ASSERT_EQ(coarse.status, SP::Error_code::OK) << name << ": " << coarse.message;
+    std::vector<SPI::Vector3> x;
+    const std::size_t folded = SPI::prolong(coarsening, coarse_x, x);
+    EXPECT_LE(folded, coarsening.removed.size() / 100) << name;
+    const SPI::Sphere_system system = system_of(arrays);
+    const SPI::Sphere_certificate certificate = SPI::certify(system.triangles, x);
+    EXPECT_LE(certificate.flipped_faces, system.triangles.size() / 100) << name;
+    EXPECT_NEAR(certificate.total_signed_area, 4. * CGAL_PI, 1e-6) << name << ": the map carried back has degree 1";
+  }
+}
+
+// The multilevel start (the default on meshes of 20,000 vertices or more) and the paper's two-disk start reach the
+// same criterion; the levels are reported, coarsest first, with the input mesh last.
+TEST(Multilevel, ConvergesAndReportsItsLevels)
+{
+  Mesh mesh = read_mesh(shared_meshes + "/brainspace_conte69_32k_lh.off");
+  ASSERT_GE(num_vertices(mesh), SPI::multilevel_min_vertices);
+  for(const bool multilevel : {true, false}) {
+    auto sphere = mesh.add_property_map<Mesh::Vertex_index, Point>(multilevel ? "v:ml" : "v:two", Point()).first;
+    const SP::Result result = SP::spherical_parameterize(mesh, sphere, SP::parameters::multilevel(multilevel));
+    ASSERT_EQ(result.status, SP::Error_code::OK) << result.message;
+    EXPECT_LE(result.max_imbalance, 1e-6);
+    EXPECT_TRUE(SP::is_bijective_on_sphere(mesh, sphere));
+    if(multilevel) {
+      ASSERT_GE(result.levels.size(), 2u);
+      EXPECT_EQ(result.levels.back().vertices, num_vertices(mesh));
+      for(std::size_t l = 1; l < result.levels.size(); ++l) EXPECT_LT(result.levels[l - 1].vertices, result.levels[l].vertices);
+      EXPECT_EQ(result.levels.back().newton_steps, result.newton.iterations);
+    } else {
+      EXPECT_TRUE(result.levels.empty());
+    }
+  }
+}
+
 // Cotangent weights made admissible (symmetric, positive) on cow: Newton alone gives up, the continuation from
 // Tutte's weights reaches their solution. Plain cotangent weights on triceratops: the path of solutions ends early.
 TEST(GlobalNewton, ContinuationFromTutteWeights)

@@ -123,6 +123,16 @@ py::dict result_dict(const SP::Result& r, const std::string& weights, const std:
   stages["gauss_seidel"] = stage_dict(r.gauss_seidel);
   stages["newton"] = stage_dict(r.newton);
   d["stages"] = stages;
+  py::list levels;
+  for(const SP::Level_statistics& level : r.levels) {
+    py::dict l;
+    l["vertices"] = level.vertices;
+    l["newton_steps"] = level.newton_steps;
+    l["linear_iterations"] = level.linear_iterations;
+    l["seconds"] = level.seconds;
+    levels.append(l);
+  }
+  d["levels"] = levels;
   d["seconds"] = r.total_seconds;
   return d;
 }

@@ -8,6 +8,7 @@
 
 #include <cstddef>
 #include <string>
+#include <vector>
 
 namespace CGAL {
 namespace Spherical_parameterization {
@@ -20,6 +21,15 @@ struct Stage_statistics {
   double residual = -1.;       ///< The paper's `Res` at the end of the stage (-1 when not computed).
   std::size_t linear_iterations = 0; ///< Stage 3: MINRES iterations of Newton's iterative linear solves (0 when
                                      ///< the systems were factorized).
+};
+
+/// \ingroup PkgSphericalParameterizationRef
+/// Figures of one level of the multilevel start (`Result::levels`).
+struct Level_statistics {
+  std::size_t vertices = 0;           ///< Vertices of the level's mesh.
+  std::size_t newton_steps = 0;       ///< Newton steps on this level (from the map carried up from the level below).
+  std::size_t linear_iterations = 0;  ///< MINRES iterations of those steps (0 when the systems were factorized).
+  double seconds = 0.;                ///< Wall-clock time of this level alone (coarsening, carrying up, Newton).
 };
 
 /// \ingroup PkgSphericalParameterizationRef
@@ -57,6 +67,10 @@ struct Result {
   Stage_statistics gauss_seidel;        ///< Stage 2: projected Gauss-Seidel while `Res` decreases.
   Stage_statistics newton;              ///< Stage 3: the `nonlinear_solver` until the `convergence_test` holds.
   double total_seconds = 0.;            ///< Wall-clock time of the whole call, input checks included.
+  /// The multilevel start (named parameter `multilevel`), coarsest level first, the input mesh last; empty when the
+  /// paper's two-disk guess on the input mesh was used. The coarsest level is solved by stages 1 to 3; its
+  /// figures are in `initial_guess`, `gauss_seidel` and `newton` only when no level above it was solved.
+  std::vector<Level_statistics> levels;
 
   std::size_t number_of_vertices = 0;   ///< Vertices of the input mesh.
   std::size_t number_of_faces = 0;      ///< Faces of the input mesh.

@@ -77,6 +77,7 @@ enum metis_seed_t { metis_seed };
 enum progress_callback_t { progress_callback };
 enum admissible_weights_t { admissible_weights };
 enum convergence_test_t { convergence_test };
+enum multilevel_t { multilevel };
 } // namespace internal_np
 
 namespace parameters {
@@ -124,6 +125,11 @@ CGAL_SPHERICAL_PARAMETERIZATION_NAMED_PARAMETER(nonlinear_solver)
 /// may be negative) and mean-value weights (not symmetric) in general do not. `Result::raised_weights` counts the
 /// edges raised.
 CGAL_SPHERICAL_PARAMETERIZATION_NAMED_PARAMETER(admissible_weights)
+/// `true` (default): on meshes of `multilevel_min_vertices` vertices or more with uniform weights and the global
+/// Newton solver, start from a coarser mesh (half-edge collapses) solved first, its map carried back to the input
+/// mesh, instead of the paper's two-disk guess (used on the coarsest mesh, and as the fallback). `false`: the
+/// paper's stage 1 on the input mesh.
+CGAL_SPHERICAL_PARAMETERIZATION_NAMED_PARAMETER(multilevel)
 /// Seed of METIS' randomized separator (default 0): the same seed gives bitwise identical output.
 CGAL_SPHERICAL_PARAMETERIZATION_NAMED_PARAMETER(metis_seed)
 

@@ -12,6 +12,7 @@
 #include <CGAL/Spherical_parameterization/internal/disk_embedding.h>
 #include <CGAL/Spherical_parameterization/internal/global_newton.h>
 #include <CGAL/Spherical_parameterization/internal/inscribability.h>
+#include <CGAL/Spherical_parameterization/internal/mesh_coarsening.h>
 #include <CGAL/Spherical_parameterization/internal/sphere_iterations.h>
 #include <CGAL/Spherical_parameterization/internal/sphere_orientation.h>
 #include <CGAL/Spherical_parameterization/internal/two_disk_partition.h>
@@ -69,7 +70,9 @@ struct Pipeline_options {
   const idx_t* metis_options = nullptr;  // METIS_NOPTIONS values, or nullptr for METIS' defaults and metis_seed
   bool verbose = false;
   bool parallel = false;  // CGAL::Parallel_tag with TBB
-  Iteration_options iterations;
+  bool multilevel = true;  // the multilevel start where it applies (multilevel_applies)
+  Iteration_options iterations;   // its max_seconds counts from `call_clock`'s start
+  Stopwatch call_clock;           // started when the user's call began (input checks and stage 1 count too)
   // Stage-level progress (the user's callback and the verbose printing); false cancels.
   std::function<bool(const Progress&)> report;
 };
@@ -115,6 +118,108 @@ bool initial_sphere(const Mesh_arrays& mesh, const Sphere_system& system, const 
 
 template <typename SolverTraits>
 Result run_pipeline(const Mesh_arrays& mesh, Sphere_system& system, const Pipeline_options& options,
+                    const SolverTraits& solver, std::vector<Vector3>& x);
+
+// The multilevel start: the mesh collapsed to about `multilevel_coarsening_ratio` of its vertices, that mesh
+// solved by the whole pipeline (itself multilevel while it is large enough), its map carried back (prolong()),
+// smoothed by a few Gauss-Seidel sweeps (the vertices carried back sit where their ring was positive, not where
+// they balance), then Newton's full steps on this mesh. From the two-disk guess the number of Newton steps grows
+// with the mesh (armadillo: 7, its Loop subdivisions: 14 to 25); from the level below it stays at 4 to 9 on every
+// level (measured: bunny00, armadillo and its subdivisions). Ratio and sweeps: of 1/2, 1/4, 1/8 and 3, 10 sweeps,
+// 1/4 with 10 sweeps was the most even on bunny00 and armadillo Loop x2 (1/2 took 52 steps on bunny00 once).
+// Returns true when this mesh's map converged (or the time or a cancel stopped it); otherwise `x` is unspecified
+// and the caller starts again with the paper's stage 1.
+constexpr std::size_t multilevel_min_vertices = 20000;
+constexpr double multilevel_coarsening_ratio = 0.25;
+constexpr std::size_t multilevel_smoothing_sweeps = 10;
+
+inline bool multilevel_applies(const Sphere_system& system, const Pipeline_options& options)
+{
+  return options.multilevel && options.weighting == Weighting::UNIFORM && system.symmetric &&
+         options.nonlinear_solver == Nonlinear_solver::GLOBAL_NEWTON && system.number_of_vertices >= multilevel_min_vertices &&
+         options.iterations.max_newton_sweeps > 0;
+}
+
+template <typename SolverTraits>
+bool multilevel_solve(const Mesh_arrays& mesh, const Sphere_system& system, const Pipeline_options& options,
+                      const SolverTraits& solver, std::vector<Vector3>& x, Result& result, Iteration_report& newton,
+                      double& newton_seconds, bool& cancelled)
+{
+  Stopwatch clock;
+  const std::size_t n = system.number_of_vertices;
+  Coarsening coarsening = coarsen_mesh(mesh, static_cast<std::size_t>(multilevel_coarsening_ratio * static_cast<double>(n)));
+  Sphere_system coarse_system = make_connectivity(coarsening.coarse);
+  std::string message;
+  if(assign_weights(coarse_system, coarsening.coarse, Weighting::UNIFORM, {}, message) != Error_code::OK) return false;
+  const double coarsening_seconds = clock.seconds();
+  std::vector<Vector3> coarse_x;
+  const Result coarse = run_pipeline(coarsening.coarse, coarse_system, options, solver, coarse_x);
+  if(coarse.status == Error_code::CANCELLED && coarse_x.size() == coarse_system.number_of_vertices) {
+    // Stopped on a coarser level: its map, carried back, is the best map there is for this one.
+    prolong(coarsening, coarse_x, x);
+    cancelled = true;
+    result.levels = coarse.levels;
+    return true;
+  }
+  if(coarse.status != Error_code::OK) {
+    if(options.verbose) std::cerr << "multilevel: the level of " << coarse_system.number_of_vertices << " vertices ended "
+                                  << get_error_message(coarse.status) << "; the two-disk guess on " << n << " vertices follows\n";
+    return false;
+  }
+  clock = Stopwatch();
+  const std::size_t folded = prolong(coarsening, coarse_x, x);
+  const std::size_t rounds = coarsening.rounds;
+  coarsening = Coarsening();
+  Iteration_options iteration_options = options.iterations;
+  if(iteration_options.max_seconds >= 0.)
+    iteration_options.max_seconds = std::max(0., iteration_options.max_seconds - options.call_clock.seconds());
+  Sphere_state state(system, x);
+  result.initial_flipped_faces = state.invalid_faces();
+  Stopwatch iterations_clock;
+  Iteration_options smoothing = iteration_options;
+  smoothing.max_gauss_seidel_sweeps = multilevel_smoothing_sweeps;
+  const Iteration_report smoothed = projected_gauss_seidel(state, smoothing, iterations_clock);
+  result.gauss_seidel.iterations = smoothed.sweeps;
+  result.gauss_seidel.residual = smoothed.residual;
+  result.gauss_seidel.seconds = iterations_clock.seconds();
+  const std::vector<Vector3> start = x;
+  result.initial_guess.residual = smoothed.residual;
+  newton = mobius_newton(state, iteration_options, iterations_clock, nullptr, free_newton_patience, true);
+  if(!newton.converged && !newton.cancelled && !newton.out_of_time) {
+    // As from the two-disk guess (run_pipeline): the same steps judged by the scale-free imbalances.
+    state.assign(start);
+    const Iteration_report first = newton;
+    newton = mobius_newton(state, iteration_options, iterations_clock, nullptr, free_newton_patience, true, Step_merit::IMBALANCE);
+    newton.sweeps += first.sweeps;
+    newton.linear_iterations += first.linear_iterations;
+  }
+  cancelled = cancelled || newton.cancelled;
+  newton_seconds = iterations_clock.seconds();
+  result.levels = coarse.levels;
+  if(result.levels.empty()) {
+    Level_statistics coarsest;
+    coarsest.vertices = coarse.number_of_vertices;
+    coarsest.newton_steps = coarse.newton.iterations;
+    coarsest.linear_iterations = coarse.newton.linear_iterations;
+    coarsest.seconds = coarse.total_seconds;
+    result.levels.push_back(coarsest);
+  }
+  Level_statistics level;
+  level.vertices = n;
+  level.newton_steps = newton.sweeps;
+  level.linear_iterations = newton.linear_iterations;
+  level.seconds = coarsening_seconds + clock.seconds();
+  result.levels.push_back(level);
+  if(options.verbose)
+    std::cerr << "multilevel: " << n << " vertices from " << coarse.number_of_vertices << " (" << rounds
+              << " rounds of collapses, " << coarsening_seconds << " s; " << folded << " vertices inserted folded): "
+              << newton.sweeps << " Newton steps, " << newton.linear_iterations << " MINRES iterations, max imbalance "
+              << summarize_imbalance(system, x, options.iterations.tolerance).max << ", " << clock.seconds() << " s\n";
+  return newton.converged || newton.cancelled || newton.out_of_time;
+}
+
+template <typename SolverTraits>
+Result run_pipeline(const Mesh_arrays& mesh, Sphere_system& system, const Pipeline_options& options,
                     const SolverTraits& solver, std::vector<Vector3>& x)
 {
   Result result;
@@ -122,139 +227,159 @@ Result run_pipeline(const Mesh_arrays& mesh, Sphere_system& system, const Pipeli
   result.number_of_vertices = system.number_of_vertices;
   result.number_of_faces = system.triangles.size();
 
-  // Stage 1.
+  Iteration_options iteration_options = options.iterations;
+  bool cancelled = false;
+  bool no_balanced_solution = false;
+  Inscribability_check inscribability;
+  Iteration_report newton;
   Stopwatch stage;
-  const Two_disk_partition partition = split_into_two_disks(system, options.metis_seed, options.metis_options);
-  if(!partition.valid) {
-    result.status = Error_code::PARTITION_FAILED;
-    result.message = get_error_message(result.status);
-    return result;
-  }
-  result.separator_size = partition.separator_size;
-  result.cut_loop_length = partition.loop.size();
-  bool embedded = initial_sphere(mesh, system, partition, options.weighting, solver, x, options.parallel);
-  if(!embedded) {
-    // An iterative solver can give up where a direct one does not: try Eigen's sparse LU before failing.
-    embedded = initial_sphere(mesh, system, partition, options.weighting, Sparse_LU_disk_solver_traits(), x, options.parallel);
-    if(options.verbose && embedded) std::cerr << "stage 1: the disk solver failed; Eigen's sparse LU was used\n";
-  }
-  Sphere_certificate start = embedded ? certify(system.triangles, x) : Sphere_certificate();
-  if(options.weighting != Weighting::UNIFORM && (!embedded || start.flipped_faces > 0)) {
-    // Weights that may be negative or non-symmetric can fold the disks: Tutte's disks cannot.
-    std::vector<Vector3> uniform_start;
-    if(initial_sphere(mesh, system, partition, Weighting::UNIFORM, solver, uniform_start, options.parallel)) {
-      const Sphere_certificate uniform_certificate = certify(system.triangles, uniform_start);
-      if(!embedded || uniform_certificate.flipped_faces < start.flipped_faces) {
-        x.swap(uniform_start);
-        start = uniform_certificate;
-        embedded = true;
-        result.uniform_initial_guess_fallback = true;
+  double multilevel_newton_seconds = 0.;
+  const bool multilevel_done = multilevel_applies(system, options) &&
+                               multilevel_solve(mesh, system, options, solver, x, result, newton, multilevel_newton_seconds, cancelled);
+  if(multilevel_done) {
+    // Stage 1 is everything before this mesh's smoothing and Newton steps (the coarser levels, solved, and the map
+    // carried back); stage 2 the smoothing.
+    result.newton.seconds = multilevel_newton_seconds - result.gauss_seidel.seconds;
+    result.initial_guess.seconds = total.seconds() - multilevel_newton_seconds;
+    result.newton.iterations = newton.sweeps;
+    result.newton.linear_iterations = newton.linear_iterations;
+    result.newton.residual = newton.residual;
+  } else {
+    result.levels.clear();
+    // Stage 1.
+    stage = Stopwatch();
+    const Two_disk_partition partition = split_into_two_disks(system, options.metis_seed, options.metis_options);
+    if(!partition.valid) {
+      result.status = Error_code::PARTITION_FAILED;
+      result.message = get_error_message(result.status);
+      return result;
+    }
+    result.separator_size = partition.separator_size;
+    result.cut_loop_length = partition.loop.size();
+    bool embedded = initial_sphere(mesh, system, partition, options.weighting, solver, x, options.parallel);
+    if(!embedded) {
+      // An iterative solver can give up where a direct one does not: try Eigen's sparse LU before failing.
+      embedded = initial_sphere(mesh, system, partition, options.weighting, Sparse_LU_disk_solver_traits(), x, options.parallel);
+      if(options.verbose && embedded) std::cerr << "stage 1: the disk solver failed; Eigen's sparse LU was used\n";
+    }
+    Sphere_certificate start = embedded ? certify(system.triangles, x) : Sphere_certificate();
+    if(options.weighting != Weighting::UNIFORM && (!embedded || start.flipped_faces > 0)) {
+      // Weights that may be negative or non-symmetric can fold the disks: Tutte's disks cannot.
+      std::vector<Vector3> uniform_start;
+      if(initial_sphere(mesh, system, partition, Weighting::UNIFORM, solver, uniform_start, options.parallel)) {
+        const Sphere_certificate uniform_certificate = certify(system.triangles, uniform_start);
+        if(!embedded || uniform_certificate.flipped_faces < start.flipped_faces) {
+          x.swap(uniform_start);
+          start = uniform_certificate;
+          embedded = true;
+          result.uniform_initial_guess_fallback = true;
+        }
       }
     }
-  }
-  if(!embedded) {
-    result.status = Error_code::DISK_EMBEDDING_FAILED;
-    result.message = get_error_message(result.status);
-    return result;
-  }
-  result.initial_flipped_faces = start.flipped_faces;
-  result.initial_guess.iterations = 2;
-  result.initial_guess.residual = compute_residuals(system, x).paper;
-  const double initial_imbalance = summarize_imbalance(system, x, options.iterations.tolerance).max;
-  result.initial_guess.seconds = stage.seconds();
-  if(options.verbose)
-    std::cerr << "stage 1: separator " << result.separator_size << " vertices, loop " << result.cut_loop_length
-              << " vertices, Res " << result.initial_guess.residual << ", non-positive faces " << start.flipped_faces
-              << ", max imbalance " << initial_imbalance << ", " << result.initial_guess.seconds << " s\n";
-  bool cancelled = false;
-  if(options.report) {
-    Progress progress;
-    progress.stage = "initial guess";
-    progress.residual = result.initial_guess.residual;
-    progress.max_imbalance = initial_imbalance;
-    progress.non_positive_faces = start.flipped_faces;
-    progress.seconds = total.seconds();
-    cancelled = !options.report(progress);
-  }
-
-  // A non-inscribable connectivity has no bijective balanced solution for positive weights: iterating cannot
-  // succeed, so the initial guess (bijective by construction in all but rare cases) is the answer; a few
-  // bijectivity-preserving iterations only serve to repair it if some of its triangles are not positive.
-  bool positive_weights = true;
-  for(double w : system.weights) positive_weights = positive_weights && w > 0.;
-  const Inscribability_check inscribability = check_inscribability(system);
-  const bool no_balanced_solution = positive_weights && inscribability.proven_not_inscribable;
-  Iteration_options iteration_options = options.iterations;
-  // Non-symmetric weights (mean value) have no exact solution in general: the imbalance cannot reach the tolerance.
-  // Until the stationarity test of their least-squares problem exists, they stop on the paper's Res, and say so.
-  if(!system.symmetric) iteration_options.convergence_test = Convergence_test::PAPER_RESIDUAL;
-  if(no_balanced_solution) {
-    iteration_options.max_gauss_seidel_sweeps = start.flipped_faces == 0 ? 0 : std::min<std::size_t>(iteration_options.max_gauss_seidel_sweeps, 100);
-    iteration_options.max_newton_sweeps = start.flipped_faces == 0 ? 0 : std::min<std::size_t>(iteration_options.max_newton_sweeps, 100);
-    iteration_options.tolerance = 0.;  // stop at the caps; no residual is the goal here
-  }
-
-  // Stages 2 and 3.
-  const std::vector<Vector3> initial_guess = x;
-  Sphere_state state(system, x);
-  Stopwatch iterations_clock;
-  // The default solver first tries Newton's full steps (through folds, keeping degree 1) from the initial guess:
-  // where they converge (most meshes, in 4 to 20 steps) stage 2 is not needed. Otherwise the paper's order
-  // follows from the initial guess again: stage 2, then stage 3 (which tries the same steps from stage 2's result
-  // before the bijectivity-preserving ones).
-  Iteration_report direct_newton;
-  Stopwatch direct_clock;
-  const bool try_direct_newton = !cancelled && !no_balanced_solution && system.symmetric &&
-                                 options.nonlinear_solver == Nonlinear_solver::GLOBAL_NEWTON && iteration_options.max_newton_sweeps > 0;
-  if(try_direct_newton) {
-    direct_newton = mobius_newton(state, iteration_options, iterations_clock, nullptr, free_newton_patience, true);
-    if(!direct_newton.converged && !direct_newton.cancelled && !direct_newton.out_of_time) {
-      // The same steps judged by the scale-free imbalances instead of Res (see Step_merit): where Res led them
-      // along the boosts towards a collapse. Measured on the 66 meshes: 8 reach this point, all small.
-      state.assign(initial_guess);
-      const Iteration_report first = direct_newton;
-      direct_newton = mobius_newton(state, iteration_options, iterations_clock, nullptr, free_newton_patience, true,
-                                    Step_merit::IMBALANCE);
-      direct_newton.sweeps += first.sweeps;
-      direct_newton.linear_iterations += first.linear_iterations;
+    if(!embedded) {
+      result.status = Error_code::DISK_EMBEDDING_FAILED;
+      result.message = get_error_message(result.status);
+      return result;
     }
-    cancelled = direct_newton.cancelled;
-    if(!direct_newton.converged && !cancelled && !direct_newton.out_of_time) state.assign(initial_guess);
-    if(iteration_options.max_newton_sweeps > direct_newton.sweeps) iteration_options.max_newton_sweeps -= direct_newton.sweeps;
-    else iteration_options.max_newton_sweeps = 0;
+    result.initial_flipped_faces = start.flipped_faces;
+    result.initial_guess.iterations = 2;
+    result.initial_guess.residual = compute_residuals(system, x).paper;
+    const double initial_imbalance = summarize_imbalance(system, x, options.iterations.tolerance).max;
+    result.initial_guess.seconds = stage.seconds();
+    if(options.verbose)
+      std::cerr << "stage 1: separator " << result.separator_size << " vertices, loop " << result.cut_loop_length
+                << " vertices, Res " << result.initial_guess.residual << ", non-positive faces " << start.flipped_faces
+                << ", max imbalance " << initial_imbalance << ", " << result.initial_guess.seconds << " s\n";
+    if(options.report) {
+      Progress progress;
+      progress.stage = "initial guess";
+      progress.residual = result.initial_guess.residual;
+      progress.max_imbalance = initial_imbalance;
+      progress.non_positive_faces = start.flipped_faces;
+      progress.seconds = total.seconds();
+      cancelled = !options.report(progress);
+    }
+
+    // A non-inscribable connectivity has no bijective balanced solution for positive weights: iterating cannot
+    // succeed, so the initial guess (bijective by construction in all but rare cases) is the answer; a few
+    // bijectivity-preserving iterations only serve to repair it if some of its triangles are not positive.
+    bool positive_weights = true;
+    for(double w : system.weights) positive_weights = positive_weights && w > 0.;
+    inscribability = check_inscribability(system);
+    no_balanced_solution = positive_weights && inscribability.proven_not_inscribable;
+    // Non-symmetric weights (mean value) have no exact solution in general: the imbalance cannot reach the tolerance.
+    // Until the stationarity test of their least-squares problem exists, they stop on the paper's Res, and say so.
+    if(!system.symmetric) iteration_options.convergence_test = Convergence_test::PAPER_RESIDUAL;
+    if(no_balanced_solution) {
+      iteration_options.max_gauss_seidel_sweeps = start.flipped_faces == 0 ? 0 : std::min<std::size_t>(iteration_options.max_gauss_seidel_sweeps, 100);
+      iteration_options.max_newton_sweeps = start.flipped_faces == 0 ? 0 : std::min<std::size_t>(iteration_options.max_newton_sweeps, 100);
+      iteration_options.tolerance = 0.;  // stop at the caps; no residual is the goal here
+    }
+
+    // Stages 2 and 3, with what is left of the time budget: it bounds the whole call, and stage 1 (which every
+    // returned map needs) runs to its end even when it alone takes longer.
+    if(iteration_options.max_seconds >= 0.)
+      iteration_options.max_seconds = std::max(0., iteration_options.max_seconds - options.call_clock.seconds());
+    const std::vector<Vector3> initial_guess = x;
+    Sphere_state state(system, x);
+    Stopwatch iterations_clock;
+    // The default solver first tries Newton's full steps (through folds, keeping degree 1) from the initial guess:
+    // where they converge (most meshes, in 4 to 20 steps) stage 2 is not needed. Otherwise the paper's order
+    // follows from the initial guess again: stage 2, then stage 3 (which tries the same steps from stage 2's result
+    // before the bijectivity-preserving ones).
+    Iteration_report direct_newton;
+    Stopwatch direct_clock;
+    const bool try_direct_newton = !cancelled && !no_balanced_solution && system.symmetric &&
+                                   options.nonlinear_solver == Nonlinear_solver::GLOBAL_NEWTON && iteration_options.max_newton_sweeps > 0;
+    if(try_direct_newton) {
+      direct_newton = mobius_newton(state, iteration_options, iterations_clock, nullptr, free_newton_patience, true);
+      if(!direct_newton.converged && !direct_newton.cancelled && !direct_newton.out_of_time) {
+        // The same steps judged by the scale-free imbalances instead of Res (see Step_merit): where Res led them
+        // along the boosts towards a collapse. Measured on the 66 meshes: 8 reach this point, all small.
+        state.assign(initial_guess);
+        const Iteration_report first = direct_newton;
+        direct_newton = mobius_newton(state, iteration_options, iterations_clock, nullptr, free_newton_patience, true,
+                                      Step_merit::IMBALANCE);
+        direct_newton.sweeps += first.sweeps;
+        direct_newton.linear_iterations += first.linear_iterations;
+      }
+      cancelled = direct_newton.cancelled;
+      if(!direct_newton.converged && !cancelled && !direct_newton.out_of_time) state.assign(initial_guess);
+      if(iteration_options.max_newton_sweeps > direct_newton.sweeps) iteration_options.max_newton_sweeps -= direct_newton.sweeps;
+      else iteration_options.max_newton_sweeps = 0;
+    }
+    const double direct_seconds = direct_clock.seconds();
+    const bool direct_done = direct_newton.converged || direct_newton.out_of_time;
+
+    stage = Stopwatch();
+    Iteration_report gauss_seidel;
+    if(!cancelled && !direct_done) gauss_seidel = projected_gauss_seidel(state, iteration_options, iterations_clock);
+    else gauss_seidel.residual = direct_newton.converged ? direct_newton.residual : result.initial_guess.residual;
+    cancelled = cancelled || gauss_seidel.cancelled;
+    result.gauss_seidel.iterations = gauss_seidel.sweeps;
+    result.gauss_seidel.residual = gauss_seidel.residual;
+    result.gauss_seidel.seconds = stage.seconds();
+    if(options.verbose)
+      std::cerr << "stage 2: " << gauss_seidel.sweeps << " sweeps, Res " << gauss_seidel.residual << ", non-positive faces "
+                << state.invalid_faces() << ", " << result.gauss_seidel.seconds << " s\n";
+
+    stage = Stopwatch();
+    if(!direct_done && !gauss_seidel.converged && !gauss_seidel.out_of_time && !cancelled && iteration_options.max_newton_sweeps > 0)
+      newton = options.nonlinear_solver == Nonlinear_solver::LOCAL_NEWTON
+                   ? local_newton(state, iteration_options, iterations_clock)
+                   : global_newton(state, iteration_options, iterations_clock, &initial_guess);
+    else newton.residual = gauss_seidel.residual;
+    cancelled = cancelled || newton.cancelled;
+    result.newton.iterations = newton.sweeps + direct_newton.sweeps;
+    result.newton.linear_iterations = newton.linear_iterations + direct_newton.linear_iterations;
+    result.newton.residual = direct_done ? direct_newton.residual : newton.residual;
+    result.newton.seconds = stage.seconds() + direct_seconds;
+    result.rejected_moves = gauss_seidel.rejected_moves + newton.rejected_moves;
+    result.continuation_parameter = newton.continuation_parameter;
+    if(options.verbose)
+      std::cerr << "stage 3: " << newton.sweeps << " sweeps, Res " << newton.residual << ", non-positive faces "
+                << state.invalid_faces() << ", " << result.newton.seconds << " s\n";
   }
-  const double direct_seconds = direct_clock.seconds();
-  const bool direct_done = direct_newton.converged || direct_newton.out_of_time;
-
-  stage = Stopwatch();
-  Iteration_report gauss_seidel;
-  if(!cancelled && !direct_done) gauss_seidel = projected_gauss_seidel(state, iteration_options, iterations_clock);
-  else gauss_seidel.residual = direct_newton.converged ? direct_newton.residual : result.initial_guess.residual;
-  cancelled = cancelled || gauss_seidel.cancelled;
-  result.gauss_seidel.iterations = gauss_seidel.sweeps;
-  result.gauss_seidel.residual = gauss_seidel.residual;
-  result.gauss_seidel.seconds = stage.seconds();
-  if(options.verbose)
-    std::cerr << "stage 2: " << gauss_seidel.sweeps << " sweeps, Res " << gauss_seidel.residual << ", non-positive faces "
-              << state.invalid_faces() << ", " << result.gauss_seidel.seconds << " s\n";
-
-  stage = Stopwatch();
-  Iteration_report newton;
-  if(!direct_done && !gauss_seidel.converged && !gauss_seidel.out_of_time && !cancelled && iteration_options.max_newton_sweeps > 0)
-    newton = options.nonlinear_solver == Nonlinear_solver::LOCAL_NEWTON
-                 ? local_newton(state, iteration_options, iterations_clock)
-                 : global_newton(state, iteration_options, iterations_clock, &initial_guess);
-  else newton.residual = gauss_seidel.residual;
-  cancelled = cancelled || newton.cancelled;
-  result.newton.iterations = newton.sweeps + direct_newton.sweeps;
-  result.newton.linear_iterations = newton.linear_iterations + direct_newton.linear_iterations;
-  result.newton.residual = direct_done ? direct_newton.residual : newton.residual;
-  result.newton.seconds = stage.seconds() + direct_seconds;
-  result.rejected_moves = gauss_seidel.rejected_moves + newton.rejected_moves;
-  result.continuation_parameter = newton.continuation_parameter;
-  if(options.verbose)
-    std::cerr << "stage 3: " << newton.sweeps << " sweeps, Res " << newton.residual << ", non-positive faces "
-              << state.invalid_faces() << ", " << result.newton.seconds << " s\n";
 
   // Certificate and figures, recomputed from scratch on the final positions.
   const Residuals residuals = compute_residuals(system, x);
@@ -356,6 +481,11 @@ Result run_pipeline(const Mesh_arrays& mesh, Sphere_system& system, const Pipeli
 ///     (`w_ij`, `w_ji` replaced by their mean, weights below 1% of the local mean raised to it), for which the theory
 ///     guarantees a bijective solution on inscribable meshes; `Result::raised_weights` counts the edges raised}
 ///     \cgalParamType{`bool`} \cgalParamDefault{`false`} \cgalParamNEnd
+///   \cgalParamNBegin{multilevel} \cgalParamDescription{on meshes of 20,000 vertices or more with uniform weights
+///     and the global solver, start from a coarser mesh (half-edge collapses to a quarter of the vertices, recursively)
+///     solved first, its map carried back, instead of the paper's two-disk guess on the mesh itself (which the
+///     coarsest level uses, and which is the fallback); `Result::levels` reports the levels}
+///     \cgalParamType{`bool`} \cgalParamDefault{`true`} \cgalParamNEnd
 ///   \cgalParamNBegin{tolerance} \cgalParamDescription{stop when every vertex's imbalance `e_i` is at most this value
 ///     (or its rounding floor, where larger); with `Convergence_test::PAPER_RESIDUAL`, when `Res` is below it}
 ///     \cgalParamType{`double`} \cgalParamDefault{`1e-6`} \cgalParamNEnd
@@ -365,7 +495,7 @@ Result run_pipeline(const Mesh_arrays& mesh, Sphere_system& system, const Pipeli
 ///     \cgalParamType{`std::size_t`} \cgalParamDefault{1000} \cgalParamNEnd
 ///   \cgalParamNBegin{max_newton_sweeps} \cgalParamDescription{iteration cap of stage 3}
 ///     \cgalParamType{`std::size_t`} \cgalParamDefault{200000} \cgalParamNEnd
-///   \cgalParamNBegin{max_seconds} \cgalParamDescription{time budget of stages 2 and 3, in seconds; a negative value means none}
+///   \cgalParamNBegin{max_seconds} \cgalParamDescription{time budget of the whole call (input checks, stage 1, stages 2 and 3), in seconds; a negative value means none. Stage 1 always runs to its end (every returned map needs it); the iterations check the budget at every iteration and between the parts of a Newton step, so the call ends at most one such part past it (see the manual)}
 ///     \cgalParamType{`double`} \cgalParamDefault{unlimited} \cgalParamNEnd
 ///   \cgalParamNBegin{preserve_bijectivity} \cgalParamDescription{backtrack moves that would fold a triangle}
 ///     \cgalParamType{`bool`} \cgalParamDefault{`true`} \cgalParamNEnd
@@ -434,6 +564,7 @@ Result spherical_parameterize(const TriangleMesh& tm, VertexSphereMap vsm,
 
   constexpr bool has_user_weights = !is_default_parameter<NamedParameters, internal_np::halfedge_weight_map_t>::value;
   internal::Pipeline_options options;
+  options.call_clock = clock;
   options.parallel = std::is_convertible<ConcurrencyTag, CGAL::Parallel_tag>::value;
   options.weighting = choose_parameter(get_parameter(np, internal_np::weighting),
                                        has_user_weights ? Weighting::USER_MAP : Weighting::UNIFORM);
@@ -449,6 +580,7 @@ Result spherical_parameterize(const TriangleMesh& tm, VertexSphereMap vsm,
   options.iterations.max_newton_sweeps = choose_parameter(get_parameter(np, internal_np::max_newton_sweeps), std::size_t(200000));
   options.iterations.max_seconds = choose_parameter(get_parameter(np, internal_np::max_seconds), -1.);
   options.iterations.preserve_bijectivity = choose_parameter(get_parameter(np, internal_np::preserve_bijectivity), true);
+  options.multilevel = choose_parameter(get_parameter(np, internal_np::multilevel), true);
   // Progress: the user's callback sees every stage end and every iteration; verbose prints at most once a second.
   std::function<bool(const Progress&)> user_callback;
   if constexpr(!is_default_parameter<NamedParameters, internal_np::progress_callback_t>::value)

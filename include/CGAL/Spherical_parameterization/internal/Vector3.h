@@ -38,6 +38,16 @@ inline double length(const Vector3& a) { return std::sqrt(dot(a, a)); }
 inline double determinant(const Vector3& a, const Vector3& b, const Vector3& c) { return dot(a, cross(b, c)); }
 inline bool is_finite(const Vector3& a) { return std::isfinite(a.x) && std::isfinite(a.y) && std::isfinite(a.z); }
 
+// An orthonormal basis (t1, t2) of the tangent plane at the unit vector x, with (t1, t2, x) positively oriented.
+inline void tangent_frame(const Vector3& x, Vector3& t1, Vector3& t2)
+{
+  const Vector3 helper = std::abs(x.x) < 0.6 ? Vector3(1, 0, 0) : (std::abs(x.y) < 0.6 ? Vector3(0, 1, 0) : Vector3(0, 0, 1));
+  t1 = cross(x, helper);
+  t1 *= 1. / length(t1);
+  t2 = cross(x, t1);
+}
+
+
 } // namespace internal
 } // namespace Spherical_parameterization
 } // namespace CGAL

@@ -244,7 +244,7 @@ inline Iteration_report cautious_newton(Sphere_state& state, const Iteration_opt
   std::vector<double> history;
   while(!has_converged(state.system(), state.positions(), residual, state.invalid_faces(), options)) {
     if(report.sweeps >= options.max_newton_sweeps) break;
-    if(options.max_seconds >= 0. && clock.seconds() > options.max_seconds) { report.out_of_time = true; break; }
+    if(past_time_budget(options, clock)) { report.out_of_time = true; break; }
     if(!newton.step(state, residual, &options)) {
       if(newton.cancelled()) { report.cancelled = true; break; }
       // No global step helps: relax locally for a while.

@@ -118,11 +118,12 @@ inline Iteration_report mobius_newton(Sphere_state& state, const Iteration_optio
       counts.gave_up = true;
       break;
     }
-    if(options.max_seconds >= 0. && clock.seconds() > options.max_seconds) { report.out_of_time = true; break; }
+    if(past_time_budget(options, clock)) { report.out_of_time = true; break; }
 
     // The boost gradient only needs to be small next to the residual forces that Newton is about to remove.
     counts.boosts += balance_boosts(state, 1e-3 * residual * static_cast<double>(n), 8);
     if(options.cancel_requested()) { report.cancelled = true; break; }
+    if(past_time_budget(options, clock)) { report.out_of_time = true; break; }
     const double previous_residual = residual;
     residual = compute_residuals(system, x).paper;
     merit = merit_of(x);
@@ -136,6 +137,7 @@ inline Iteration_report mobius_newton(Sphere_state& state, const Iteration_optio
       has_step = newton.factorize(x) && newton.solve(step, allow_folds);
     }
     if(options.cancel_requested()) { report.cancelled = true; break; }
+    if(past_time_budget(options, clock)) { report.out_of_time = true; break; }
     if(has_step) {
       Vector3 rotation, boost;
       remove_rotation_and_boost(x, step, rotation, boost);

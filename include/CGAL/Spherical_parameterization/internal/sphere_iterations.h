@@ -199,6 +199,12 @@ private:
   std::chrono::steady_clock::time_point start_;
 };
 
+// The time budget, checked between iterations and, inside the long ones, between their parts.
+inline bool past_time_budget(const Iteration_options& options, const Stopwatch& clock)
+{
+  return options.max_seconds >= 0. && clock.seconds() > options.max_seconds;
+}
+
 // Paper, Section 3.2, with lambda = 1: x_i <- s_i / |s_i| in turn, while Res decreases. The last iterate whose
 // residual did not grow is kept.
 inline Iteration_report projected_gauss_seidel(Sphere_state& state, const Iteration_options& options, const Stopwatch& clock)
@@ -209,7 +215,7 @@ inline Iteration_report projected_gauss_seidel(Sphere_state& state, const Iterat
   double residual = state.refresh_sums();
   std::vector<Vector3> previous;
   while(report.sweeps < options.max_gauss_seidel_sweeps) {
-    if(options.max_seconds >= 0. && clock.seconds() > options.max_seconds) { report.out_of_time = true; break; }
+    if(past_time_budget(options, clock)) { report.out_of_time = true; break; }
     previous = x;
     for(std::size_t i = 0; i < system.number_of_vertices; ++i) {
       const Vector3 s = state.sum(i);
@@ -307,7 +313,7 @@ inline Iteration_report local_newton(Sphere_state& state, const Iteration_option
   std::vector<double> history;
   while(!has_converged(system, state.positions(), residual, state.invalid_faces(), options)) {
     if(report.sweeps >= options.max_newton_sweeps) break;
-    if(options.max_seconds >= 0. && clock.seconds() > options.max_seconds) { report.out_of_time = true; break; }
+    if(past_time_budget(options, clock)) { report.out_of_time = true; break; }
     std::size_t moved = 0;
     for(std::size_t i = 0; i < system.number_of_vertices; ++i) {
       if(local_newton_step(state, i, options.preserve_bijectivity)) ++moved;

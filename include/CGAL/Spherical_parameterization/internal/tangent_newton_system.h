@@ -32,14 +32,6 @@ namespace CGAL {
 namespace Spherical_parameterization {
 namespace internal {
 
-inline void tangent_frame(const Vector3& x, Vector3& t1, Vector3& t2)
-{
-  const Vector3 helper = std::abs(x.x) < 0.6 ? Vector3(1, 0, 0) : (std::abs(x.y) < 0.6 ? Vector3(0, 1, 0) : Vector3(0, 0, 1));
-  t1 = cross(x, helper);
-  t1 *= 1. / length(t1);
-  t2 = cross(x, t1);
-}
-
 // A fill-reducing order of the vertices, computed on the vertex graph (a quarter of the unknowns' graph):
 // approximate minimum degree for small meshes, where it is the faster to compute, METIS nested dissection for
 // large ones, where its smaller fill pays. rank[i] is the position of vertex i.
