@@ -124,8 +124,9 @@ Result run_pipeline(const Mesh_arrays& mesh, Sphere_system& system, const Pipeli
 // solved by the whole pipeline (itself multilevel while it is large enough), its map carried back (prolong()),
 // smoothed by a few Gauss-Seidel sweeps (the vertices carried back sit where their ring was positive, not where
 // they balance), then Newton's full steps on this mesh. From the two-disk guess the number of Newton steps grows
-// with the mesh (armadillo: 7, its Loop subdivisions: 14 to 25); from the level below it stays at 4 to 9 on every
-// level (measured: bunny00, armadillo and its subdivisions). Ratio and sweeps: of 1/2, 1/4, 1/8 and 3, 10 sweeps,
+// with the mesh (armadillo: 7, its Loop subdivisions: 14 to 25); from the level below it was 3 to 10 on the real
+// meshes measured, but 19 on the finest level of armadillo Loop x2 (the full steps first fold many tiny triangles:
+// see the manual's Performance section). Ratio and sweeps: of 1/2, 1/4, 1/8 and 3, 10 sweeps,
 // 1/4 with 10 sweeps was the most even on bunny00 and armadillo Loop x2 (1/2 took 52 steps on bunny00 once).
 // Returns true when this mesh's map converged (or the time or a cancel stopped it); otherwise `x` is unspecified
 // and the caller starts again with the paper's stage 1.
