@@ -1,8 +1,11 @@
 // The whole pipeline on a list of meshes, printed as a table in the style of the paper's Table 1 (and as CSV).
 //
 //   benchmark_spherical_parameterization [--runs N] [--weights uniform,mean_value,cotangent]
-//                                        [--solvers global,local] [--tolerance T] [--max-seconds S] [--sequential]
-//                                        [--csv FILE] MESH...
+//                                        [--solvers global,local,paper] [--tolerance T] [--max-seconds S]
+//                                        [--sequential] [--csv FILE] MESH...
+// Solvers: global = the default (global Newton, multilevel start where it applies, stopping on the imbalance);
+// local = the paper's local Newton, stopping on the imbalance; paper = the paper's setting as published (two-disk
+// start, local Newton, stopping on its Res).
 // CGAL::Parallel_if_available_tag by default (the two disks of stage 1 at the same time when TBB is there);
 // --sequential uses CGAL::Sequential_tag.
 //
@@ -53,6 +56,15 @@ SP::Weighting weighting_of(const std::string& name)
   return SP::Weighting::UNIFORM;
 }
 
+// "vertices:Newton steps" of each multilevel level, coarsest first, separated by ';' (empty without levels).
+std::string levels_of(const SP::Result& result)
+{
+  std::string text;
+  for(const SP::Level_statistics& level : result.levels)
+    text += (text.empty() ? "" : ";") + std::to_string(level.vertices) + ":" + std::to_string(level.newton_steps);
+  return text;
+}
+
 } // namespace
 
 int main(int argc, char** argv)
@@ -81,10 +93,10 @@ int main(int argc, char** argv)
     const bool exists = std::ifstream(csv_path).good();
     csv.open(csv_path, std::ios::app);
     if(!exists)
-      csv << "mesh,faces,weights,solver,tolerance,status,initial_s,gauss_seidel_s,newton_s,total_s,gs_sweeps,newton_steps,res,max_tangential,flips,peak_mb,runs\n";
+      csv << "mesh,faces,weights,solver,tolerance,status,initial_s,gauss_seidel_s,newton_s,total_s,gs_sweeps,newton_steps,res,max_tangential,flips,peak_mb,runs,max_imbalance,levels\n";
   }
   std::printf("%-28s %9s %-10s %-6s %-14s %8s %8s %8s %8s %10s %10s %6s %8s\n", "mesh", "faces", "weights", "solver",
-              "status", "init s", "gs s", "newton s", "total s", "Res", "max tang", "flips", "peak MB");
+              "status", "init s", "gs s", "newton s", "total s", "Res", "max e_i", "flips", "peak MB");
   for(const std::string& path : meshes) {
     Mesh mesh;
     if(!CGAL::IO::read_polygon_mesh(path, mesh)) { std::cerr << "cannot read " << path << "\n"; continue; }
@@ -95,9 +107,12 @@ int main(int argc, char** argv)
       for(const std::string& s : solvers) {
         std::vector<SP::Result> results;
         for(int r = 0; r < runs; ++r) {
+          const bool paper = s == "paper";
           const auto parameters = SP::parameters::combine(
               SP::parameters::weighting(weighting_of(w)), SP::parameters::max_seconds(max_seconds), SP::parameters::tolerance(tolerance),
-              SP::parameters::nonlinear_solver(s == "local" ? SP::Nonlinear_solver::LOCAL_NEWTON : SP::Nonlinear_solver::GLOBAL_NEWTON));
+              SP::parameters::nonlinear_solver(s == "global" ? SP::Nonlinear_solver::GLOBAL_NEWTON : SP::Nonlinear_solver::LOCAL_NEWTON),
+              SP::parameters::convergence_test(paper ? SP::Convergence_test::PAPER_RESIDUAL : SP::Convergence_test::IMBALANCE),
+              SP::parameters::multilevel(!paper));
           results.push_back(sequential ? SP::spherical_parameterize<CGAL::Sequential_tag>(mesh, sphere, parameters)
                                        : SP::spherical_parameterize<CGAL::Parallel_if_available_tag>(mesh, sphere, parameters));
         }
@@ -107,14 +122,15 @@ int main(int argc, char** argv)
         const double peak = peak_megabytes();
         std::printf("%-28s %9zu %-10s %-6s %-14s %8.3f %8.3f %8.3f %8.3f %10.3g %10.3g %6zu %8.0f\n", name.c_str(),
                     m.number_of_faces, w.c_str(), s.c_str(), SP::get_error_name(m.status), m.initial_guess.seconds,
-                    m.gauss_seidel.seconds, m.newton.seconds, m.total_seconds, m.residual, m.max_tangential_residual,
+                    m.gauss_seidel.seconds, m.newton.seconds, m.total_seconds, m.residual, m.max_imbalance,
                     m.flipped_faces, peak);
         std::fflush(stdout);
         if(csv.is_open())
           csv << name << ',' << m.number_of_faces << ',' << w << ',' << s << ',' << tolerance << ',' << SP::get_error_name(m.status) << ','
               << m.initial_guess.seconds << ',' << m.gauss_seidel.seconds << ',' << m.newton.seconds << ',' << m.total_seconds
               << ',' << m.gauss_seidel.iterations << ',' << m.newton.iterations << ',' << m.residual << ','
-              << m.max_tangential_residual << ',' << m.flipped_faces << ',' << peak << ',' << runs << '\n';
+              << m.max_tangential_residual << ',' << m.flipped_faces << ',' << peak << ',' << runs << ',' << m.max_imbalance << ','
+              << levels_of(m) << '\n';
       }
   }
   return 0;

@@ -123,11 +123,12 @@ Result run_pipeline(const Mesh_arrays& mesh, Sphere_system& system, const Pipeli
 // The multilevel start: the mesh collapsed to about `multilevel_coarsening_ratio` of its vertices, that mesh
 // solved by the whole pipeline (itself multilevel while it is large enough), its map carried back (prolong()),
 // smoothed by a few Gauss-Seidel sweeps (the vertices carried back sit where their ring was positive, not where
-// they balance), then Newton's full steps on this mesh. From the two-disk guess the number of Newton steps grows
-// with the mesh (armadillo: 7, its Loop subdivisions: 14 to 25); from the level below it was 3 to 10 on the real
-// meshes measured, but 19 on the finest level of armadillo Loop x2 (the full steps first fold many tiny triangles:
-// see the manual's Performance section). Ratio and sweeps: of 1/2, 1/4, 1/8 and 3, 10 sweeps,
-// 1/4 with 10 sweeps was the most even on bunny00 and armadillo Loop x2 (1/2 took 52 steps on bunny00 once).
+// they balance), then Newton's full steps on this mesh, the boosts solved as outer unknowns (Boost_aim::ROOT).
+// From the two-disk guess the number of Newton steps grows with the mesh (armadillo: 7, its Loop subdivisions: 14
+// to 25); from the level below it is 3 to 6 on the meshes measured (real meshes of 24k to 164k vertices, armadillo
+// Loop x2 and x3), where the boosts balanced only upwards and taken from Newton's step took 4 to 27.
+// Ratio and sweeps: of 1/2, 1/4, 1/8 and 3, 10 sweeps, 1/4 with 10 sweeps was the most even on bunny00 and
+// armadillo Loop x2 (1/2 took 52 steps on bunny00 once); 30 or 60 sweeps did not lower the steps.
 // Returns true when this mesh's map converged (or the time or a cancel stopped it); otherwise `x` is unspecified
 // and the caller starts again with the paper's stage 1.
 constexpr std::size_t multilevel_min_vertices = 20000;
@@ -185,12 +186,15 @@ bool multilevel_solve(const Mesh_arrays& mesh, const Sphere_system& system, cons
   result.gauss_seidel.seconds = iterations_clock.seconds();
   const std::vector<Vector3> start = x;
   result.initial_guess.residual = smoothed.residual;
-  newton = mobius_newton(state, iteration_options, iterations_clock, nullptr, free_newton_patience, true);
+  // The map carried back is close to the solution: the boost equations are solved as equations (Boost_aim).
+  newton = mobius_newton(state, iteration_options, iterations_clock, nullptr, free_newton_patience, true, Step_merit::RESIDUAL,
+                         Boost_aim::ROOT);
   if(!newton.converged && !newton.cancelled && !newton.out_of_time) {
     // As from the two-disk guess (run_pipeline): the same steps judged by the scale-free imbalances.
     state.assign(start);
     const Iteration_report first = newton;
-    newton = mobius_newton(state, iteration_options, iterations_clock, nullptr, free_newton_patience, true, Step_merit::IMBALANCE);
+    newton = mobius_newton(state, iteration_options, iterations_clock, nullptr, free_newton_patience, true, Step_merit::IMBALANCE,
+                           Boost_aim::ROOT);
     newton.sweeps += first.sweeps;
     newton.linear_iterations += first.linear_iterations;
   }

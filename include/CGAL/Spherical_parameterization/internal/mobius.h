@@ -31,16 +31,34 @@ namespace CGAL {
 namespace Spherical_parameterization {
 namespace internal {
 
-inline Vector3 apply_boost(const Vector3& x, const Vector3& c)
-{
-  const double s = length(c);
-  if(!(s > 0.)) return x;
-  const Vector3 a = c * (1. / s);
-  const double t = std::tanh(s);
-  const double u = dot(a, x);
-  Vector3 y = ((u + t) * a + std::sqrt((1. - t) * (1. + t)) * (x - u * a)) * (1. / (1. + u * t));
-  return y * (1. / length(y));
-}
+// The boost with vector c, its constants computed once (tanh and the square root) for the many vertices it moves.
+class Boost {
+public:
+  explicit Boost(const Vector3& c)
+  {
+    const double s = length(c);
+    identity_ = !(s > 0.);
+    if(identity_) return;
+    axis_ = c * (1. / s);
+    t_ = std::tanh(s);
+    root_ = std::sqrt((1. - t_) * (1. + t_));
+  }
+
+  Vector3 operator()(const Vector3& x) const
+  {
+    if(identity_) return x;
+    const double u = dot(axis_, x);
+    const Vector3 y = ((u + t_) * axis_ + root_ * (x - u * axis_)) * (1. / (1. + u * t_));
+    return y * (1. / length(y));
+  }
+
+private:
+  bool identity_ = true;
+  Vector3 axis_;
+  double t_ = 0., root_ = 1.;
+};
+
+inline Vector3 apply_boost(const Vector3& x, const Vector3& c) { return Boost(c)(x); }
 
 // The raw (unnormalized) weight of the entry k = (i, j) and its mean with the weight of (j, i): the weights of
 // the symmetric energy that the boosts are balanced against (the raw weights themselves when they are symmetric).
@@ -50,28 +68,48 @@ inline double symmetric_raw_weight(const Sphere_system& system, std::size_t i, s
   return 0.5 * (system.weights[k] * system.row_sums[i] + system.weights[system.reverse[k]] * system.row_sums[j]);
 }
 
-// E(x) = 1/2 sum over edges of the symmetric raw weights times |x_i - x_j|^2.
-inline double spring_energy(const Sphere_system& system, const std::vector<Vector3>& x)
+// The symmetric raw weight of every entry, in the order of system.neighbors.
+inline std::vector<double> symmetric_raw_weights(const Sphere_system& system)
 {
-  double energy = 0.;
+  std::vector<double> w(system.neighbors.size());
   for(std::size_t i = 0; i < system.number_of_vertices; ++i)
-    for(std::size_t k = system.offsets[i]; k < system.offsets[i + 1]; ++k)
-      energy += symmetric_raw_weight(system, i, k) * squared_length(x[i] - x[static_cast<std::size_t>(system.neighbors[k])]);
-  return 0.25 * energy;
+    for(std::size_t k = system.offsets[i]; k < system.offsets[i + 1]; ++k) w[k] = symmetric_raw_weight(system, i, k);
+  return w;
 }
 
-// -dE/dc at c = 0 for the boost with vector c: sum_i of the tangential part of sum_j w_ij (x_j - x_i), because the
-// boost field at x_i, e_k - (e_k.x_i) x_i, is the tangential part of e_k.
-inline Eigen::Vector3d boost_gradient(const Sphere_system& system, const std::vector<Vector3>& x)
+// E(x) = 1/2 sum over edges of the symmetric raw weights w times |x_i - x_j|^2, and -dE/dc at c = 0 for the boost
+// with vector c: sum_i of the tangential part of sum_j w_ij (x_j - x_i), because the boost field at x_i,
+// e_k - (e_k.x_i) x_i, is the tangential part of e_k. One pass computes both.
+inline void spring_energy_and_boost_gradient(const Sphere_system& system, const std::vector<double>& w,
+                                             const std::vector<Vector3>& x, double* energy, Eigen::Vector3d* gradient)
 {
+  double e = 0.;
   Vector3 g;
   for(std::size_t i = 0; i < system.number_of_vertices; ++i) {
     Vector3 s;
-    for(std::size_t k = system.offsets[i]; k < system.offsets[i + 1]; ++k)
-      s += symmetric_raw_weight(system, i, k) * (x[static_cast<std::size_t>(system.neighbors[k])] - x[i]);
+    for(std::size_t k = system.offsets[i]; k < system.offsets[i + 1]; ++k) {
+      const Vector3 edge = x[static_cast<std::size_t>(system.neighbors[k])] - x[i];
+      if(energy != nullptr) e += w[k] * squared_length(edge);
+      s += w[k] * edge;
+    }
     g += s - dot(s, x[i]) * x[i];
   }
-  return Eigen::Vector3d(g.x, g.y, g.z);
+  if(energy != nullptr) *energy = 0.25 * e;
+  if(gradient != nullptr) *gradient = Eigen::Vector3d(g.x, g.y, g.z);
+}
+
+inline double spring_energy(const Sphere_system& system, const std::vector<Vector3>& x)
+{
+  double e = 0.;
+  spring_energy_and_boost_gradient(system, symmetric_raw_weights(system), x, &e, nullptr);
+  return e;
+}
+
+inline Eigen::Vector3d boost_gradient(const Sphere_system& system, const std::vector<Vector3>& x)
+{
+  Eigen::Vector3d g;
+  spring_energy_and_boost_gradient(system, symmetric_raw_weights(system), x, nullptr, &g);
+  return g;
 }
 
 // The least-squares infinitesimal rotation w and boost c that best explain the tangent displacements d_i
@@ -103,43 +141,69 @@ inline void remove_rotation_and_boost(const std::vector<Vector3>& x, std::vector
   for(std::size_t i = 0; i < x.size(); ++i) d[i] -= cross(rotation, x[i]) + (boost - dot(boost, x[i]) * x[i]);
 }
 
-// Maximizes E over the boosts: Newton on their three parameters (the Hessian from finite differences of the
-// gradient), each step shortened until E grows and every positive face stays positive. Stops when |grad| <= target,
-// after `max_iterations`, or when no step helps. Returns the number of boosts applied.
-inline std::size_t balance_boosts(Sphere_state& state, double target, std::size_t max_iterations)
+// What the boosts are balanced to. E is a maximum along the boosts at the balanced map, but not at every iterate
+// on the way: on a map carried back from a coarser level the boosts' 3x3 Hessian often has a positive eigenvalue,
+// and steps restricted to going up E (the gradient where Newton's step does not) crawl away from the critical
+// point; the Newton steps on the whole map that follow then fold and wander. Solving g(c) = 0 as equations
+// (ROOT) suits such a map, close to the solution: measured on 8 meshes of 32k to 416k vertices, the Newton steps
+// per multilevel level fell from 4-27 to 3-11 and the time by 10-40%. Far from the solution (the two-disk guess)
+// the root of g that Newton heads for can be the collapse at infinity, where g vanishes like exp(-2s) along a
+// boost (Newton's steps keep the length 1/2 there): CGAL's u.off and openscad1580 collapsed. There the steps go
+// up E (MAXIMUM), the collapse being E's minimum.
+enum class Boost_aim { MAXIMUM, ROOT };
+
+// Balances the boosts: Newton's method on the three equations g(c) = 0 of the boost parameters c (g =
+// boost_gradient, the residual forces summed along the boost fields; its Jacobian from finite differences), each
+// step shortened until g shrinks or E grows (away from the collapse, where E = 0; near the solution E no longer
+// resolves the change and g decides) and every positive face stays positive. With Boost_aim::MAXIMUM, a Newton
+// step that does not go up E is replaced by the gradient. Stops when |g| <= target, after `max_iterations`, or
+// when no step helps. Returns the number of boosts applied.
+inline std::size_t balance_boosts(Sphere_state& state, double target, std::size_t max_iterations,
+                                  Boost_aim aim = Boost_aim::MAXIMUM)
 {
   const Sphere_system& system = state.system();
   const std::vector<Vector3>& x = state.positions();
   const std::size_t n = x.size();
+  const std::vector<double> w = symmetric_raw_weights(system);
   std::vector<Vector3> y(n);
   auto boosted = [&](const Eigen::Vector3d& c) {
-    const Vector3 v(c[0], c[1], c[2]);
-    for(std::size_t i = 0; i < n; ++i) y[i] = apply_boost(x[i], v);
+    const Boost boost(Vector3(c[0], c[1], c[2]));
+    for(std::size_t i = 0; i < n; ++i) y[i] = boost(x[i]);
+  };
+  auto gradient_at = [&](const std::vector<Vector3>& z) {
+    Eigen::Vector3d g;
+    spring_energy_and_boost_gradient(system, w, z, nullptr, &g);
+    return g;
   };
   std::size_t applied = 0;
+  Eigen::Vector3d g;
+  double energy = 0.;
+  spring_energy_and_boost_gradient(system, w, x, &energy, &g);
   for(std::size_t iteration = 0; iteration < max_iterations; ++iteration) {
-    const Eigen::Vector3d g = boost_gradient(system, x);
     if(!(g.norm() > target)) break;
     const double epsilon = 1e-6;
     Eigen::Matrix3d slope;
     for(int l = 0; l < 3; ++l) {
       boosted(epsilon * Eigen::Vector3d::Unit(l));
-      slope.col(l) = (boost_gradient(system, y) - g) / epsilon;
+      slope.col(l) = (gradient_at(y) - g) / epsilon;
     }
-    // E grows along c when -g.c > 0; Newton's step -slope^-1 g when it does, the gradient otherwise.
+    // Newton's step for g(c) = 0 (see Boost_aim).
     Eigen::Vector3d c = -slope.partialPivLu().solve(g);
-    if(!c.allFinite() || !(-g.dot(c) > 0.)) c = -g;
+    if(!c.allFinite() || (aim == Boost_aim::MAXIMUM && !(-g.dot(c) > 0.))) c = -g;
     if(c.norm() > 1.) c *= 1. / c.norm();
-    const double energy = spring_energy(system, x);
     bool accepted = false;
+    double trial_energy = 0.;
+    Eigen::Vector3d trial_gradient;
     for(double t = 1.; t > 1e-3; t *= 0.5) {
       boosted(t * c);
       if(!state.keeps_positive_faces(y)) continue;
-      // Near the maximum E no longer resolves the change: the gradient decides.
-      if(spring_energy(system, y) > energy || boost_gradient(system, y).norm() < g.norm()) { accepted = true; break; }
+      spring_energy_and_boost_gradient(system, w, y, &trial_energy, &trial_gradient);
+      if(trial_energy > energy || trial_gradient.norm() < g.norm()) { accepted = true; break; }
     }
     if(!accepted) break;
     state.assign(y);
+    energy = trial_energy;
+    g = trial_gradient;
     ++applied;
   }
   return applied;

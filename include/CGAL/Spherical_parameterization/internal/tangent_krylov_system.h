@@ -110,25 +110,23 @@ private:
     project_out_rotations(out);
   }
 
-  // out = P T^T (L^-1 (x) I3) T P in, one V-cycle per ambient coordinate.
+  // out = P T^T (L^-1 (x) I3) T P in: one V-cycle for the three ambient coordinates at once.
   void precondition(const double* in, double* out)
   {
     const std::size_t n = system_.number_of_vertices;
     projected_.assign(in, in + 2 * n);
     project_out_rotations(projected_.data());
-    for(int c = 0; c < 3; ++c) {
-      coordinate_in_[static_cast<std::size_t>(c)].resize(n);
-      coordinate_out_[static_cast<std::size_t>(c)].resize(n);
-    }
+    coordinates_in_.resize(3 * n);
+    coordinates_out_.resize(3 * n);
     for(std::size_t i = 0; i < n; ++i) {
       const Vector3 v = projected_[2 * i] * t1_[i] + projected_[2 * i + 1] * t2_[i];
-      coordinate_in_[0][i] = v.x;
-      coordinate_in_[1][i] = v.y;
-      coordinate_in_[2][i] = v.z;
+      coordinates_in_[3 * i] = v.x;
+      coordinates_in_[3 * i + 1] = v.y;
+      coordinates_in_[3 * i + 2] = v.z;
     }
-    for(std::size_t c = 0; c < 3; ++c) hierarchy_.apply_v_cycle(coordinate_in_[c].data(), coordinate_out_[c].data());
+    hierarchy_.apply_v_cycle_block<3>(coordinates_in_.data(), coordinates_out_.data());
     for(std::size_t i = 0; i < n; ++i) {
-      const Vector3 v(coordinate_out_[0][i], coordinate_out_[1][i], coordinate_out_[2][i]);
+      const Vector3 v(coordinates_out_[3 * i], coordinates_out_[3 * i + 1], coordinates_out_[3 * i + 2]);
       out[2 * i] = dot(t1_[i], v);
       out[2 * i + 1] = dot(t2_[i], v);
     }
@@ -201,7 +199,7 @@ private:
   std::vector<Vector3> t1_, t2_, ambient_;
   std::vector<double> alpha_, rhs_, solution_, projected_;
   std::vector<double> rotations_[3];
-  std::vector<double> coordinate_in_[3], coordinate_out_[3];
+  std::vector<double> coordinates_in_, coordinates_out_;  // three ambient coordinates, interleaved
   AMG::Ruge_stueben_hierarchy hierarchy_;
   AMG::Krylov_workspace workspace_;
   bool hierarchy_built_ = false;

@@ -434,10 +434,26 @@ public:
 
   // x = M^{-1} b, with M^{-1} one V-cycle started from zero: a fixed linear operator,
   // symmetric when A is (forward Gauss-Seidel before, backward after, R = P^T).
-  void apply_v_cycle(const double* b, double* x)
+  void apply_v_cycle(const double* b, double* x) { apply_v_cycle_block<1>(b, x); }
+
+  // The same V-cycle for K right-hand sides at once, stored interleaved (entry c of row i at i * K + c): each level's
+  // matrices are read once for all of them, which is where a V-cycle spends its time. Each column gets the
+  // operations of apply_v_cycle.
+  template <int K>
+  void apply_v_cycle_block(const double* b, double* x)
   {
-    std::fill(x, x + m_levels.front().A.number_of_rows, 0.);
-    v_cycle(0, b, x);
+    const std::size_t n = static_cast<std::size_t>(m_levels.front().A.number_of_rows);
+    for(std::size_t l = 1; l < m_levels.size(); ++l)
+    {
+      const std::size_t size = K * static_cast<std::size_t>(m_levels[l].A.number_of_rows);
+      if(m_levels[l].solution.size() < size)
+      {
+        m_levels[l].solution.resize(size);
+        m_levels[l].right_hand_side.resize(size);
+      }
+    }
+    std::fill(x, x + K * n, 0.);
+    v_cycle<K>(0, b, x);
   }
 
   std::size_t memory_bytes() const
@@ -475,81 +491,105 @@ private:
     return m_sparse_coarse_solver->info() == Eigen::Success;
   }
 
+  template <int K>
   void solve_coarsest(const double* b, double* x)
   {
     const Index n = m_levels.back().A.number_of_rows;
-    Eigen::Map<const Eigen::VectorXd> rhs(b, n);
-    Eigen::Map<Eigen::VectorXd> solution(x, n);
+    typedef Eigen::Matrix<double, Eigen::Dynamic, K, K == 1 ? Eigen::ColMajor : Eigen::RowMajor> Block;
+    Eigen::Map<const Block> rhs(b, n, K);
+    Eigen::Map<Block> solution(x, n, K);
+    const Eigen::Matrix<double, Eigen::Dynamic, K> columns = rhs;  // the solvers want column-major storage
+    Eigen::Matrix<double, Eigen::Dynamic, K> result;
     if(m_sparse_coarse_solver)
-      solution = m_sparse_coarse_solver->solve(rhs);
+      result = m_sparse_coarse_solver->solve(columns);
     else
-      solution = m_dense_coarse_solver.solve(rhs);
+      result = m_dense_coarse_solver.solve(columns);
+    solution = result;
   }
 
-  static void gauss_seidel_forward(const Level& level, const double* b, double* x)
+  // One Gauss-Seidel sweep on K interleaved columns, rows in increasing order (forward) or decreasing.
+  template <int K, bool forward>
+  static void gauss_seidel(const Level& level, const double* b, double* x)
   {
     const Compressed_row_matrix& A = level.A;
     const Index* row_start = A.row_start.data();
     const Index* column = A.column.data();
     const double* value = A.value.data();
-    for(Index i = 0; i < A.number_of_rows; ++i)
+    const Index n = A.number_of_rows;
+    for(Index r = 0; r < n; ++r)
     {
-      double defect = b[i];
+      const Index i = forward ? r : n - 1 - r;
+      double defect[K];
+      for(int c = 0; c < K; ++c)
+        defect[c] = b[K * i + c];
       for(Index k = row_start[i]; k < row_start[i + 1]; ++k)
-        defect -= value[k] * x[column[k]];
-      x[i] += defect / value[row_start[i]];
-    }
-  }
-
-  static void gauss_seidel_backward(const Level& level, const double* b, double* x)
-  {
-    const Compressed_row_matrix& A = level.A;
-    const Index* row_start = A.row_start.data();
-    const Index* column = A.column.data();
-    const double* value = A.value.data();
-    for(Index i = A.number_of_rows - 1; i >= 0; --i)
-    {
-      double defect = b[i];
-      for(Index k = row_start[i]; k < row_start[i + 1]; ++k)
-        defect -= value[k] * x[column[k]];
-      x[i] += defect / value[row_start[i]];
+      {
+        const double a = value[k];
+        const double* xj = x + K * column[k];
+        for(int c = 0; c < K; ++c)
+          defect[c] -= a * xj[c];
+      }
+      const double diagonal = value[row_start[i]];
+      for(int c = 0; c < K; ++c)
+        x[K * i + c] += defect[c] / diagonal;
     }
   }
 
   // coarse_b = P^T (b - A x), without storing the residual.
+  template <int K>
   static void restrict_residual(const Level& level, const double* b, const double* x, double* coarse_b)
   {
     const Compressed_row_matrix& A = level.A;
     const Compressed_row_matrix& P = level.P;
-    std::fill(coarse_b, coarse_b + P.number_of_columns, 0.);
+    std::fill(coarse_b, coarse_b + K * static_cast<std::size_t>(P.number_of_columns), 0.);
     for(Index i = 0; i < A.number_of_rows; ++i)
     {
-      double r = b[i];
+      double r[K];
+      for(int c = 0; c < K; ++c)
+        r[c] = b[K * i + c];
       for(Index k = A.row_start[i]; k < A.row_start[i + 1]; ++k)
-        r -= A.value[k] * x[A.column[k]];
+        for(int c = 0; c < K; ++c)
+          r[c] -= A.value[k] * x[K * A.column[k] + c];
       for(Index k = P.row_start[i]; k < P.row_start[i + 1]; ++k)
-        coarse_b[P.column[k]] += P.value[k] * r;
+        for(int c = 0; c < K; ++c)
+          coarse_b[K * P.column[k] + c] += P.value[k] * r[c];
+    }
+  }
+
+  // x += P coarse_x on K interleaved columns.
+  template <int K>
+  static void interpolate_add(const Compressed_row_matrix& P, const double* coarse_x, double* x)
+  {
+    for(Index i = 0; i < P.number_of_rows; ++i)
+    {
+      double sum[K] = {};
+      for(Index k = P.row_start[i]; k < P.row_start[i + 1]; ++k)
+        for(int c = 0; c < K; ++c)
+          sum[c] += P.value[k] * coarse_x[K * P.column[k] + c];
+      for(int c = 0; c < K; ++c)
+        x[K * i + c] += sum[c];
     }
   }
 
   // x must be zero on entry.
+  template <int K>
   void v_cycle(std::size_t l, const double* b, double* x)
   {
     if(l + 1 == m_levels.size())
     {
-      solve_coarsest(b, x);
+      solve_coarsest<K>(b, x);
       return;
     }
     Level& level = m_levels[l];
     Level& coarse = m_levels[l + 1];
     for(int s = 0; s < m_parameters.pre_smoothing_sweeps; ++s)
-      gauss_seidel_forward(level, b, x);
-    restrict_residual(level, b, x, coarse.right_hand_side.data());
-    std::fill(coarse.solution.begin(), coarse.solution.end(), 0.);
-    v_cycle(l + 1, coarse.right_hand_side.data(), coarse.solution.data());
-    multiply_add(level.P, coarse.solution.data(), x);
+      gauss_seidel<K, true>(level, b, x);
+    restrict_residual<K>(level, b, x, coarse.right_hand_side.data());
+    std::fill(coarse.solution.begin(), coarse.solution.begin() + K * static_cast<std::size_t>(coarse.A.number_of_rows), 0.);
+    v_cycle<K>(l + 1, coarse.right_hand_side.data(), coarse.solution.data());
+    interpolate_add<K>(level.P, coarse.solution.data(), x);
     for(int s = 0; s < m_parameters.post_smoothing_sweeps; ++s)
-      gauss_seidel_backward(level, b, x);
+      gauss_seidel<K, false>(level, b, x);
   }
 
   Hierarchy_parameters m_parameters;
