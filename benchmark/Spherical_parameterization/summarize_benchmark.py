@@ -1,10 +1,15 @@
 #!/usr/bin/env python3
 """Summarizes the CSV of benchmark_spherical_parameterization: a Markdown table, the speed-up of the default
-(global) solver over the paper's local Newton, and the exponent of time against faces (least squares in log-log)."""
+(global) solver over the paper's local Newton, the exponent of time against faces (least squares in log-log), and
+the time to reach each tolerance.
+
+Usage: summarize_benchmark.py CSV [--plot FILE.svg]   (--plot: the time-to-tolerance chart as an SVG file, the
+manual's fig/time_to_tolerance.svg; written by hand, no plotting library needed)"""
 import csv
 import math
 import sys
 
+plot_path = sys.argv[sys.argv.index("--plot") + 1] if "--plot" in sys.argv else None
 rows = list(csv.DictReader(open(sys.argv[1])))
 if not rows:
     sys.exit("no results in " + sys.argv[1])
@@ -60,6 +65,43 @@ if len(ok) >= 2:
     if len(big) >= 2:
         print("The same on the %d meshes of 100k faces or more: faces^%.2f" % (len(big), slope(big)))
 
+def write_plot(path, ladders):
+    """Seconds (log scale) against the tolerance (log scale, tighter to the right), one line per mesh."""
+    width, height, left, right, top, bottom = 640, 400, 70, 190, 30, 50
+    points = {m: sorted((t, float(r["total_s"])) for t, r in ts.items() if r["status"] == "OK") for m, ts in ladders.items()}
+    tolerances = [t for p in points.values() for t, _ in p]
+    seconds = [v for p in points.values() for _, v in p]
+    if not tolerances:
+        return
+    lt0, lt1 = math.floor(math.log10(min(tolerances))), math.ceil(math.log10(max(tolerances)))
+    ls0, ls1 = math.floor(math.log10(min(seconds))), math.ceil(math.log10(max(seconds)))
+    lt1 = max(lt1, lt0 + 1)
+    ls1 = max(ls1, ls0 + 1)
+    x = lambda t: left + (lt1 - math.log10(t)) / (lt1 - lt0) * (width - left - right)
+    y = lambda v: top + (ls1 - math.log10(v)) / (ls1 - ls0) * (height - top - bottom)
+    colours = ["#1f5fa8", "#c0392b", "#27864a", "#8e44ad", "#d68910"]
+    out = ['<svg xmlns="http://www.w3.org/2000/svg" width="%d" height="%d" font-family="sans-serif" font-size="12">' % (width, height),
+           '<rect width="100%" height="100%" fill="white"/>']
+    for e in range(lt0, lt1 + 1):
+        out.append('<line x1="%.1f" y1="%d" x2="%.1f" y2="%d" stroke="#ddd"/>' % (x(10 ** e), top, x(10 ** e), height - bottom))
+        out.append('<text x="%.1f" y="%d" text-anchor="middle">1e%d</text>' % (x(10 ** e), height - bottom + 16, e))
+    for e in range(ls0, ls1 + 1):
+        out.append('<line x1="%d" y1="%.1f" x2="%d" y2="%.1f" stroke="#ddd"/>' % (left, y(10 ** e), width - right, y(10 ** e)))
+        out.append('<text x="%d" y="%.1f" text-anchor="end">%g s</text>' % (left - 6, y(10 ** e) + 4, 10 ** e))
+    out.append('<text x="%d" y="%d" text-anchor="middle">tolerance on the largest imbalance (tighter to the right)</text>'
+               % ((left + width - right) // 2, height - 12))
+    for k, (m, p) in enumerate(sorted(points.items())):
+        c = colours[k % len(colours)]
+        out.append('<polyline fill="none" stroke="%s" stroke-width="2" points="%s"/>' % (c, " ".join("%.1f,%.1f" % (x(t), y(v)) for t, v in p)))
+        for t, v in p:
+            out.append('<circle cx="%.1f" cy="%.1f" r="3.5" fill="%s"/>' % (x(t), y(v), c))
+        faces = next(iter(ladders[m].values()))["faces"]
+        out.append('<text x="%d" y="%d" fill="%s">%s (%s faces)</text>' % (width - right + 10, top + 16 + 18 * k, c, m, faces))
+    out.append('<text x="%d" y="%d">whole map call, seconds (log scale)</text>' % (left, top - 10))
+    out.append("</svg>")
+    open(path, "w").write("\n".join(out) + "\n")
+
+
 # Time to a tolerance: the default solver on the same mesh at several tolerances of the imbalance test.
 by_mesh = {}
 for r in rows:
@@ -78,3 +120,6 @@ if ladders:
             r = ts.get(t)
             cells.append("-" if r is None else "%.2f s (%s, %.0e)" % (float(r["total_s"]), r["status"], float(r.get("max_imbalance", "nan"))))
         print("| %s | %s | %s |" % (m, next(iter(ts.values()))["faces"], " | ".join(cells)))
+
+    if plot_path:
+        write_plot(plot_path, ladders)

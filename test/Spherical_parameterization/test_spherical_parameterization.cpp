@@ -502,6 +502,33 @@ TEST(Mobius, BalancingRaisesTheSpringEnergyAndKeepsTrianglesPositive)
   EXPECT_EQ(SPI::certify(system.triangles, x).flipped_faces, 0u);
 }
 
+// The exact Jacobian of the boost gradient (Boost_aim::ROOT) agrees with central differences along the boosts,
+// on an unbalanced map (the initial sphere) and on one boosted away from it.
+TEST(Mobius, BoostGradientJacobianMatchesFiniteDifferences)
+{
+  const SPI::Mesh_arrays arrays = arrays_of(read_mesh(cgal_data + "/triceratops.off"));
+  const SPI::Sphere_system system = system_of(arrays);
+  const std::vector<double> w = SPI::symmetric_raw_weights(system);
+  std::vector<SPI::Vector3> x = initial_sphere_of(arrays, system);
+  for(int map = 0; map < 2; ++map) {
+    if(map == 1)
+      for(SPI::Vector3& p : x) p = SPI::apply_boost(p, SPI::Vector3(0.3, -0.2, 0.5));
+    const Eigen::Matrix3d exact = SPI::boost_gradient_jacobian(system, w, x);
+    Eigen::Matrix3d differences;
+    const double h = 1e-5;
+    std::vector<SPI::Vector3> plus(x.size()), minus(x.size());
+    for(int l = 0; l < 3; ++l) {
+      const SPI::Vector3 axis(l == 0 ? h : 0., l == 1 ? h : 0., l == 2 ? h : 0.);
+      for(std::size_t i = 0; i < x.size(); ++i) {
+        plus[i] = SPI::apply_boost(x[i], axis);
+        minus[i] = SPI::apply_boost(x[i], -1. * axis);
+      }
+      differences.col(l) = (SPI::boost_gradient(system, plus) - SPI::boost_gradient(system, minus)) / (2. * h);
+    }
+    EXPECT_LT((exact - differences).norm(), 1e-6 * exact.norm()) << "map " << map << "\nexact\n" << exact << "\ndifferences\n" << differences;
+  }
+}
+
 // From stages 1 and 2, Newton with the boosts handled exactly reaches machine precision in a few steps, and the
 // residual falls at least quadratically once small.
 TEST(GlobalNewton, MobiusNewtonConvergesQuadratically)

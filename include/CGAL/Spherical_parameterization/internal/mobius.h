@@ -98,6 +98,33 @@ inline void spring_energy_and_boost_gradient(const Sphere_system& system, const 
   if(gradient != nullptr) *gradient = Eigen::Vector3d(g.x, g.y, g.z);
 }
 
+// The Jacobian of the boost gradient g along the boosts: column l is the derivative of g(B_{s e_l}(x)) at s = 0.
+// With P_i = I - x_i x_i^T, s_i = sum_j w_ij (x_j - x_i), t_i = P_i s_i, sigma_i = s_i . x_i and
+// M_i = sum_j w_ij x_j x_j^T, differentiating g = sum_i t_i along the boost fields P_i e_l gives
+//   sum_i (-P_i M_i - x_i t_i^T - sigma_i P_i)
+// (checked against finite differences in the tests). One pass, where finite differences take three boosted ones.
+inline Eigen::Matrix3d boost_gradient_jacobian(const Sphere_system& system, const std::vector<double>& w,
+                                               const std::vector<Vector3>& x)
+{
+  Eigen::Matrix3d jacobian = Eigen::Matrix3d::Zero();
+  for(std::size_t i = 0; i < system.number_of_vertices; ++i) {
+    Eigen::Matrix3d m = Eigen::Matrix3d::Zero();
+    Eigen::Vector3d sum = Eigen::Vector3d::Zero();
+    const Eigen::Vector3d xi(x[i].x, x[i].y, x[i].z);
+    for(std::size_t k = system.offsets[i]; k < system.offsets[i + 1]; ++k) {
+      const Vector3& p = x[static_cast<std::size_t>(system.neighbors[k])];
+      const Eigen::Vector3d xj(p.x, p.y, p.z);
+      m.noalias() += w[k] * (xj * xj.transpose());
+      sum += w[k] * (xj - xi);
+    }
+    const double sigma = sum.dot(xi);
+    const Eigen::Vector3d t = sum - sigma * xi;
+    const Eigen::Matrix3d projector = Eigen::Matrix3d::Identity() - xi * xi.transpose();
+    jacobian -= projector * m + xi * t.transpose() + sigma * projector;
+  }
+  return jacobian;
+}
+
 inline double spring_energy(const Sphere_system& system, const std::vector<Vector3>& x)
 {
   double e = 0.;
@@ -145,15 +172,17 @@ inline void remove_rotation_and_boost(const std::vector<Vector3>& x, std::vector
 // on the way: on a map carried back from a coarser level the boosts' 3x3 Hessian often has a positive eigenvalue,
 // and steps restricted to going up E (the gradient where Newton's step does not) crawl away from the critical
 // point; the Newton steps on the whole map that follow then fold and wander. Solving g(c) = 0 as equations
-// (ROOT) suits such a map, close to the solution: measured on 8 meshes of 32k to 416k vertices, the Newton steps
-// per multilevel level fell from 4-27 to 3-11 and the time by 10-40%. Far from the solution (the two-disk guess)
+// (ROOT, with the boost part of Newton's step dropped: mobius_newton) suits such a map, close to the solution:
+// measured on 8 meshes of 32k to 416k vertices, the Newton steps per multilevel level above the coarsest fell
+// from 4-27 to 3-6. Far from the solution (the two-disk guess)
 // the root of g that Newton heads for can be the collapse at infinity, where g vanishes like exp(-2s) along a
 // boost (Newton's steps keep the length 1/2 there): CGAL's u.off and openscad1580 collapsed. There the steps go
 // up E (MAXIMUM), the collapse being E's minimum.
 enum class Boost_aim { MAXIMUM, ROOT };
 
 // Balances the boosts: Newton's method on the three equations g(c) = 0 of the boost parameters c (g =
-// boost_gradient, the residual forces summed along the boost fields; its Jacobian from finite differences), each
+// boost_gradient, the residual forces summed along the boost fields; its Jacobian exact with ROOT, from finite
+// differences with MAXIMUM), each
 // step shortened until g shrinks or E grows (away from the collapse, where E = 0; near the solution E no longer
 // resolves the change and g decides) and every positive face stays positive. With Boost_aim::MAXIMUM, a Newton
 // step that does not go up E is replaced by the gradient. Stops when |g| <= target, after `max_iterations`, or
@@ -181,11 +210,17 @@ inline std::size_t balance_boosts(Sphere_state& state, double target, std::size_
   spring_energy_and_boost_gradient(system, w, x, &energy, &g);
   for(std::size_t iteration = 0; iteration < max_iterations; ++iteration) {
     if(!(g.norm() > target)) break;
-    const double epsilon = 1e-6;
     Eigen::Matrix3d slope;
-    for(int l = 0; l < 3; ++l) {
-      boosted(epsilon * Eigen::Vector3d::Unit(l));
-      slope.col(l) = (gradient_at(y) - g) / epsilon;
+    if(aim == Boost_aim::ROOT) {
+      slope = boost_gradient_jacobian(system, w, x);
+    } else {
+      // The finite differences with which the two-disk path's outcomes on the test corpus were measured (the
+      // exact Jacobian changed which of its hard cases converge, both ways).
+      const double epsilon = 1e-6;
+      for(int l = 0; l < 3; ++l) {
+        boosted(epsilon * Eigen::Vector3d::Unit(l));
+        slope.col(l) = (gradient_at(y) - g) / epsilon;
+      }
     }
     // Newton's step for g(c) = 0 (see Boost_aim).
     Eigen::Vector3d c = -slope.partialPivLu().solve(g);
