@@ -184,20 +184,9 @@ bool multilevel_solve(const Mesh_arrays& mesh, const Sphere_system& system, cons
   result.gauss_seidel.iterations = smoothed.sweeps;
   result.gauss_seidel.residual = smoothed.residual;
   result.gauss_seidel.seconds = iterations_clock.seconds();
-  const std::vector<Vector3> start = x;
   result.initial_guess.residual = smoothed.residual;
   // The map carried back is close to the solution: the boost equations are solved as equations (Boost_aim).
-  newton = mobius_newton(state, iteration_options, iterations_clock, nullptr, free_newton_patience, true, Step_merit::RESIDUAL,
-                         Boost_aim::ROOT);
-  if(!newton.converged && !newton.cancelled && !newton.out_of_time) {
-    // As from the two-disk guess (run_pipeline): the same steps judged by the scale-free imbalances.
-    state.assign(start);
-    const Iteration_report first = newton;
-    newton = mobius_newton(state, iteration_options, iterations_clock, nullptr, free_newton_patience, true, Step_merit::IMBALANCE,
-                           Boost_aim::ROOT);
-    newton.sweeps += first.sweeps;
-    newton.linear_iterations += first.linear_iterations;
-  }
+  newton = full_newton_steps(state, iteration_options, iterations_clock, Boost_aim::ROOT);
   cancelled = cancelled || newton.cancelled;
   newton_seconds = iterations_clock.seconds();
   result.levels = coarse.levels;
@@ -337,17 +326,8 @@ Result run_pipeline(const Mesh_arrays& mesh, Sphere_system& system, const Pipeli
     const bool try_direct_newton = !cancelled && !no_balanced_solution && system.symmetric &&
                                    options.nonlinear_solver == Nonlinear_solver::GLOBAL_NEWTON && iteration_options.max_newton_sweeps > 0;
     if(try_direct_newton) {
-      direct_newton = mobius_newton(state, iteration_options, iterations_clock, nullptr, free_newton_patience, true);
-      if(!direct_newton.converged && !direct_newton.cancelled && !direct_newton.out_of_time) {
-        // The same steps judged by the scale-free imbalances instead of Res (see Step_merit): where Res led them
-        // along the boosts towards a collapse. Measured on the 66 meshes: 8 reach this point, all small.
-        state.assign(initial_guess);
-        const Iteration_report first = direct_newton;
-        direct_newton = mobius_newton(state, iteration_options, iterations_clock, nullptr, free_newton_patience, true,
-                                      Step_merit::IMBALANCE);
-        direct_newton.sweeps += first.sweeps;
-        direct_newton.linear_iterations += first.linear_iterations;
-      }
+      // Measured on the 66 meshes: 8 need the second attempt (on the imbalances), all small.
+      direct_newton = full_newton_steps(state, iteration_options, iterations_clock);
       cancelled = direct_newton.cancelled;
       if(!direct_newton.converged && !cancelled && !direct_newton.out_of_time) state.assign(initial_guess);
       if(iteration_options.max_newton_sweeps > direct_newton.sweeps) iteration_options.max_newton_sweeps -= direct_newton.sweeps;

@@ -284,6 +284,24 @@ inline bool has_tutte_weights(const Sphere_system& system)
 // converge this way (CGAL's and ../shared's 66 closed genus-0 meshes, uniform weights) need at most about 20.
 constexpr std::size_t free_newton_patience = 30;
 
+// Newton's full steps through folds from the current map; when they do not converge (nor were stopped), once more
+// from the same map with the line search on the scale-free imbalances instead of Res (see Step_merit: Res led
+// some steps along the boosts towards a collapse). The first phase from the two-disk guess and on each multilevel
+// level (`boost_aim`: Boost_aim::ROOT there). The reports of both attempts are added up.
+inline Iteration_report full_newton_steps(Sphere_state& state, const Iteration_options& options, const Stopwatch& clock,
+                                          Boost_aim boost_aim = Boost_aim::MAXIMUM)
+{
+  const std::vector<Vector3> start = state.positions();
+  Iteration_report report = mobius_newton(state, options, clock, nullptr, free_newton_patience, true, Step_merit::RESIDUAL, boost_aim);
+  if(report.converged || report.cancelled || report.out_of_time) return report;
+  state.assign(start);
+  const Iteration_report first = report;
+  report = mobius_newton(state, options, clock, nullptr, free_newton_patience, true, Step_merit::IMBALANCE, boost_aim);
+  report.sweeps += first.sweeps;
+  report.linear_iterations += first.linear_iterations;
+  return report;
+}
+
 // Stage 3. Symmetric weights: Newton's steps through folds, then the bijectivity-preserving Moebius-aware Newton; if it gives up and the weights are not Tutte's, the
 // continuation from Tutte's weights; if that fails too, the cautious Newton from the best iterate so far.
 // Non-symmetric weights: the cautious Newton (Levenberg-Marquardt).
