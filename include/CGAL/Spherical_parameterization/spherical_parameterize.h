@@ -71,6 +71,10 @@ struct Pipeline_options {
   bool verbose = false;
   bool parallel = false;  // CGAL::Parallel_tag with TBB
   bool multilevel = true;  // the multilevel start where it applies (multilevel_applies)
+  // A coarser level of the multilevel start: only Newton's full steps are tried. When they fail, the finer level
+  // starts from its own two disks, so the fallbacks of stages 2 and 3 would be spent on a mere start (measured on
+  // Loop subdivisions of CGAL's man and bull: 35 s and 17 s lost on a coarse level that did not converge).
+  bool coarse_level = false;
   Iteration_options iterations;   // its max_seconds counts from `call_clock`'s start
   Stopwatch call_clock;           // started when the user's call began (input checks and stage 1 count too)
   // Stage-level progress (the user's callback and the verbose printing); false cancels.
@@ -155,7 +159,9 @@ bool multilevel_solve(const Mesh_arrays& mesh, const Sphere_system& system, cons
   if(assign_weights(coarse_system, coarsening.coarse, Weighting::UNIFORM, {}, message) != Error_code::OK) return false;
   const double coarsening_seconds = clock.seconds();
   std::vector<Vector3> coarse_x;
-  const Result coarse = run_pipeline(coarsening.coarse, coarse_system, options, solver, coarse_x);
+  Pipeline_options coarse_options = options;
+  coarse_options.coarse_level = true;
+  const Result coarse = run_pipeline(coarsening.coarse, coarse_system, coarse_options, solver, coarse_x);
   if(coarse.status == Error_code::CANCELLED && coarse_x.size() == coarse_system.number_of_vertices) {
     // Stopped on a coarser level: its map, carried back, is the best map there is for this one.
     prolong(coarsening, coarse_x, x);
@@ -328,6 +334,10 @@ Result run_pipeline(const Mesh_arrays& mesh, Sphere_system& system, const Pipeli
     if(try_direct_newton) {
       // Measured on the 66 meshes: 8 need the second attempt (on the imbalances), all small.
       direct_newton = full_newton_steps(state, iteration_options, iterations_clock);
+      if(options.coarse_level && !direct_newton.converged) {
+        iteration_options.max_gauss_seidel_sweeps = 0;
+        iteration_options.max_newton_sweeps = 0;
+      }
       cancelled = direct_newton.cancelled;
       if(!direct_newton.converged && !cancelled && !direct_newton.out_of_time) state.assign(initial_guess);
       if(iteration_options.max_newton_sweeps > direct_newton.sweeps) iteration_options.max_newton_sweeps -= direct_newton.sweeps;
