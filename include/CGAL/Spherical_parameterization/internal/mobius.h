@@ -174,26 +174,24 @@ inline void remove_rotation_and_boost(const std::vector<Vector3>& x, std::vector
 // point; the Newton steps on the whole map that follow then fold and wander. Solving g(c) = 0 as equations
 // (ROOT, with the boost part of Newton's step dropped: mobius_newton) suits such a map, close to the solution:
 // measured on 8 meshes of 32k to 416k vertices, the Newton steps per multilevel level above the coarsest fell
-// from 4-27 to 3-6. Far from the solution (the two-disk guess)
-// the root of g that Newton heads for can be the collapse at infinity, where g vanishes like exp(-2s) along a
-// boost (Newton's steps keep the length 1/2 there): CGAL's u.off and openscad1580 collapsed. There the steps go
-// up E (MAXIMUM), the collapse being E's minimum.
+// from 4-27 to 3-6. Far from the solution (the two-disk guess) the root of g that Newton heads for can be the
+// collapse at infinity, where g vanishes like exp(-2s) along a boost (Newton's steps keep the length 1/2 there):
+// CGAL's u.off and openscad1580 collapsed. There the steps go up E (MAXIMUM), the collapse being E's minimum.
 enum class Boost_aim { MAXIMUM, ROOT };
 
 // Balances the boosts: Newton's method on the three equations g(c) = 0 of the boost parameters c (g =
 // boost_gradient, the residual forces summed along the boost fields; its Jacobian exact with ROOT, from finite
-// differences with MAXIMUM), each
-// step shortened until g shrinks or E grows (away from the collapse, where E = 0; near the solution E no longer
-// resolves the change and g decides) and every positive face stays positive. With Boost_aim::MAXIMUM, a Newton
-// step that does not go up E is replaced by the gradient. Stops when |g| <= target, after `max_iterations`, or
-// when no step helps. Returns the number of boosts applied.
-inline std::size_t balance_boosts(Sphere_state& state, double target, std::size_t max_iterations,
-                                  Boost_aim aim = Boost_aim::MAXIMUM)
+// differences with MAXIMUM), each step shortened until g shrinks or E grows (away from the collapse, where E = 0;
+// near the solution E no longer resolves the change and g decides) and every positive face stays positive. With
+// Boost_aim::MAXIMUM, a Newton step that does not go up E is replaced by the gradient. Stops when |g| <= target,
+// after `max_iterations`, or when no step helps. Returns the number of boosts applied.
+// `w`: symmetric_raw_weights(state.system()), computed once by a caller that balances the boosts again and again.
+inline std::size_t balance_boosts(Sphere_state& state, const std::vector<double>& w, double target,
+                                  std::size_t max_iterations, Boost_aim aim = Boost_aim::MAXIMUM)
 {
   const Sphere_system& system = state.system();
   const std::vector<Vector3>& x = state.positions();
   const std::size_t n = x.size();
-  const std::vector<double> w = symmetric_raw_weights(system);
   std::vector<Vector3> y(n);
   auto boosted = [&](const Eigen::Vector3d& c) {
     const Boost boost(Vector3(c[0], c[1], c[2]));
@@ -242,6 +240,12 @@ inline std::size_t balance_boosts(Sphere_state& state, double target, std::size_
     ++applied;
   }
   return applied;
+}
+
+inline std::size_t balance_boosts(Sphere_state& state, double target, std::size_t max_iterations,
+                                  Boost_aim aim = Boost_aim::MAXIMUM)
+{
+  return balance_boosts(state, symmetric_raw_weights(state.system()), target, max_iterations, aim);
 }
 
 } // namespace internal

@@ -99,6 +99,7 @@ inline Iteration_report mobius_newton(Sphere_state& state, const Iteration_optio
   for(double w : system.weights) positive_weights = positive_weights && w > 0.;
   const bool iterative = allow_folds && positive_weights && n >= iterative_newton_min_vertices;
   Tangent_krylov_system krylov(system);
+  const std::vector<double> boost_weights = symmetric_raw_weights(system);
   double forcing = newton_max_forcing;
   std::vector<Vector3> step, trial(n);
   double residual = compute_residuals(system, x).paper;
@@ -124,7 +125,7 @@ inline Iteration_report mobius_newton(Sphere_state& state, const Iteration_optio
     if(past_time_budget(options, clock)) { report.out_of_time = true; break; }
 
     // The boost gradient only needs to be small next to the residual forces that Newton is about to remove.
-    counts.boosts += balance_boosts(state, 1e-3 * residual * static_cast<double>(n), 8, boost_aim);
+    counts.boosts += balance_boosts(state, boost_weights, 1e-3 * residual * static_cast<double>(n), 8, boost_aim);
     if(options.cancel_requested()) { report.cancelled = true; break; }
     if(past_time_budget(options, clock)) { report.out_of_time = true; break; }
     const double previous_residual = residual;
