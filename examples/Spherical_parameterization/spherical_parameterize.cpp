@@ -25,6 +25,7 @@
 #include <algorithm>
 #include <atomic>
 #include <cerrno>
+#include <charconv>
 #include <chrono>
 #include <cmath>
 #include <condition_variable>
@@ -1028,13 +1029,33 @@ bool write_sphere(const std::string& path, const std::vector<Point>& sphere, con
     } else {
       out << "OFF\n# " << stamp << "\n" << sphere.size() << ' ' << faces.size() << " 0\n";
     }
+    // std::to_chars writes what `out << std::setprecision(17)` writes (%.17g), several times faster (a third of
+    // bunny00's 0.045 s of writing went to iostream's formatting).
     const double r = settings.radius;
-    for(const Point& p : sphere) out << r * p.x() << ' ' << r * p.y() << ' ' << r * p.z() << '\n';
-    for(const auto& f : faces) {
-      out << f.size();
-      for(std::size_t i : f) out << ' ' << i;
-      out << '\n';
+    std::string text;
+    text.reserve(64 * sphere.size() + 32 * faces.size());
+    char buffer[40];
+    auto append_number = [&](auto value, auto... format) {
+      const std::to_chars_result written = std::to_chars(buffer, buffer + sizeof(buffer), value, format...);
+      text.append(buffer, written.ptr);
+    };
+    for(const Point& p : sphere) {
+      append_number(r * p.x(), std::chars_format::general, 17);
+      text += ' ';
+      append_number(r * p.y(), std::chars_format::general, 17);
+      text += ' ';
+      append_number(r * p.z(), std::chars_format::general, 17);
+      text += '\n';
     }
+    for(const auto& f : faces) {
+      append_number(f.size());
+      for(std::size_t i : f) {
+        text += ' ';
+        append_number(i);
+      }
+      text += '\n';
+    }
+    out.write(text.data(), static_cast<std::streamsize>(text.size()));
     out.flush();
     if(!out) { error = "writing '" + temporary + "' failed"; std::remove(temporary.c_str()); return false; }
   }

@@ -448,7 +448,8 @@ TEST(GlobalNewton, LowersTheResidualAndKeepsEveryTrianglePositive)
   const SPI::Sphere_system system = system_of(arrays);
   std::vector<SPI::Vector3> x = initial_sphere_of(arrays, system);
   SPI::Sphere_state state(system, x);
-  SPI::Global_newton newton(system);
+  const SPI::Solver_tuning tuning;
+  SPI::Global_newton newton(system, tuning);
   double residual = state.refresh_sums();
   const double start = residual;
   for(int k = 0; k < 5; ++k) {
@@ -494,7 +495,9 @@ TEST(Mobius, BalancingRaisesTheSpringEnergyAndKeepsTrianglesPositive)
   SPI::Sphere_state state(system, x);
   const double energy = SPI::spring_energy(system, x);
   const double gradient = SPI::boost_gradient(system, x).norm();
-  const std::size_t boosts = SPI::balance_boosts(state, 1e-9, 20);
+  SPI::Solver_tuning tuning;
+  tuning.boost_max_iterations = 20;
+  const std::size_t boosts = SPI::balance_boosts(state, 1e-9, tuning);
   EXPECT_GT(boosts, 0u);
   EXPECT_GT(SPI::spring_energy(system, x), energy);
   EXPECT_LT(SPI::boost_gradient(system, x).norm(), 1e-6 * gradient);
@@ -629,7 +632,7 @@ TEST(NewtonKrylov, FullStepsConvergeWithFewMinresIterations)
 {
   const SPI::Mesh_arrays arrays = arrays_of(read_mesh(shared_meshes + "/gary_david.off"));
   const SPI::Sphere_system system = system_of(arrays);
-  ASSERT_GE(system.number_of_vertices, SPI::iterative_newton_min_vertices);
+  ASSERT_GE(system.number_of_vertices, SPI::Solver_tuning().iterative_newton_min_vertices);
   std::vector<SPI::Vector3> x = initial_sphere_of(arrays, system);
   SPI::Sphere_state state(system, x);
   SPI::Iteration_options options;
@@ -638,7 +641,7 @@ TEST(NewtonKrylov, FullStepsConvergeWithFewMinresIterations)
     imbalance.push_back(SPI::summarize_imbalance(system, x, options.tolerance).max);
     return true;
   };
-  const SPI::Iteration_report report = SPI::mobius_newton(state, options, SPI::Stopwatch(), nullptr, SPI::free_newton_patience, true);
+  const SPI::Iteration_report report = SPI::mobius_newton(state, options, SPI::Stopwatch(), nullptr, SPI::Solver_tuning().free_newton_patience, true);
   ASSERT_TRUE(report.converged);
   EXPECT_GT(report.linear_iterations, 0u);
   EXPECT_LE(report.linear_iterations, 25 * report.sweeps);
@@ -669,8 +672,8 @@ TEST(Multilevel, CoarseningAndProlongationKeepGenusZeroAndPositiveFans)
     std::vector<SPI::Vector3> coarse_x;
     SPI::Pipeline_options options;
     options.multilevel = false;
-    const SP::Result coarse = SPI::run_pipeline(coarsening.coarse, coarse_system, options,
-                                                SP::Default_disk_solver_traits(), coarse_x);
+    const SP::Default_disk_solver_traits solver;
+    const SP::Result coarse = SPI::Sphere_mapper<SP::Default_disk_solver_traits>(coarsening.coarse, coarse_system, options, solver).map(coarse_x);
     ASSERT_EQ(coarse.status, SP::Error_code::OK) << name << ": " << coarse.message;
     std::vector<SPI::Vector3> x;
     const std::size_t folded = SPI::prolong(coarsening, coarse_x, x);
@@ -687,7 +690,7 @@ TEST(Multilevel, CoarseningAndProlongationKeepGenusZeroAndPositiveFans)
 TEST(Multilevel, ConvergesAndReportsItsLevels)
 {
   Mesh mesh = read_mesh(shared_meshes + "/brainspace_conte69_32k_lh.off");
-  ASSERT_GE(num_vertices(mesh), SPI::multilevel_min_vertices);
+  ASSERT_GE(num_vertices(mesh), SPI::Solver_tuning().multilevel_min_vertices);
   for(const bool multilevel : {true, false}) {
     auto sphere = mesh.add_property_map<Mesh::Vertex_index, Point>(multilevel ? "v:ml" : "v:two", Point()).first;
     const SP::Result result = SP::spherical_parameterize(mesh, sphere, SP::parameters::multilevel(multilevel));

@@ -227,7 +227,7 @@ int main(int argc, char** argv)
 
   input_inc << "#declare Mesh_figures = \"" << nv << " vertices, " << nf << " faces\";\n";
 
-  // Stage 1 as run_pipeline() runs it with uniform weights (the paper's Figure 1); every weighting starts from
+  // Stage 1 as Sphere_mapper::two_disk_start() runs it with uniform weights (the paper's Figure 1); every weighting starts from
   // the same partition, so its loop is drawn on every sphere.
   SPI::Sphere_system system = SPI::make_connectivity(mesh);
   std::string message;

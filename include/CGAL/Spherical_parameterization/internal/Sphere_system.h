@@ -291,6 +291,7 @@ constexpr double imbalance_rounding_factor = 8.;
 struct Vertex_imbalance {
   double imbalance = 0.;      // e_i
   double rounding_floor = 0.; // the smallest e_i that double precision can promise at this vertex
+  double squared_residual = 0.; // |t_i|^2: the vertex's term of the paper's Res (compute_residuals)
 };
 
 inline Vertex_imbalance vertex_imbalance(const Sphere_system& system, const std::vector<Vector3>& x, std::size_t i)
@@ -304,9 +305,10 @@ inline Vertex_imbalance vertex_imbalance(const Sphere_system& system, const std:
     scale += std::abs(w) * length(e);
     weight_magnitude += std::abs(w);
   }
-  const double tangential = length(tangential_part(x[i], d));
-  constexpr double half_ulp = 1.1102230246251565e-16;  // 2^-53
   Vertex_imbalance result;
+  result.squared_residual = squared_length(tangential_part(x[i], d));
+  const double tangential = std::sqrt(result.squared_residual);
+  constexpr double half_ulp = 1.1102230246251565e-16;  // 2^-53
   if(scale > 0.) {
     result.imbalance = tangential / scale;
     result.rounding_floor = imbalance_rounding_factor * 2. * std::sqrt(3.) * half_ulp * weight_magnitude / scale;
@@ -336,6 +338,7 @@ inline double imbalance_merit(const Sphere_system& system, const std::vector<Vec
 
 struct Imbalance_summary {
   double max = 0.;                          // max_i e_i
+  double rms = 0.;                          // the root mean square of e_i (imbalance_merit)
   double percentile_99 = 0.;                // the 99th percentile of e_i (when the values were asked for)
   double worst_ratio = 0.;                  // max_i e_i / max(tolerance, rounding_floor_i): <= 1 when balanced
   std::size_t unbalanced_vertices = 0;      // e_i > max(tolerance, rounding_floor_i)
@@ -351,15 +354,18 @@ inline Imbalance_summary summarize_imbalance(const Sphere_system& system, const 
   const std::size_t n = system.number_of_vertices;
   if(values != nullptr) values->resize(n);
   Imbalance_summary summary;
+  double sum_of_squares = 0.;
   for(std::size_t i = 0; i < n; ++i) {
     const Vertex_imbalance v = vertex_imbalance(system, x, i);
     if(values != nullptr) (*values)[i] = v.imbalance;
+    sum_of_squares += v.imbalance * v.imbalance;
     const double allowed = std::max(tolerance, v.rounding_floor);
     summary.max = std::max(summary.max, v.imbalance);
     summary.worst_ratio = std::max(summary.worst_ratio, allowed > 0. ? v.imbalance / allowed : (v.imbalance > 0. ? HUGE_VAL : 0.));
     summary.unbalanced_vertices += !(v.imbalance <= allowed);
     summary.vertices_at_rounding_floor += v.rounding_floor > tolerance;
   }
+  summary.rms = std::sqrt(sum_of_squares / static_cast<double>(std::max<std::size_t>(n, 1)));
   if(n > 0 && values != nullptr) {
     std::vector<double> sorted(*values);
     const std::size_t rank = std::min(n - 1, static_cast<std::size_t>(std::ceil(0.99 * static_cast<double>(n))) - 1);
@@ -367,6 +373,33 @@ inline Imbalance_summary summarize_imbalance(const Sphere_system& system, const 
     summary.percentile_99 = sorted[rank];
   }
   return summary;
+}
+
+// What the iterations watch, from one pass over the vertices: the paper's Res and the imbalances.
+struct Map_measure {
+  double residual = 0.;         // the paper's Res (compute_residuals)
+  Imbalance_summary imbalance;  // against the tolerance of the convergence test, with the root mean square
+};
+
+inline Map_measure measure_map(const Sphere_system& system, const std::vector<Vector3>& x, double tolerance)
+{
+  const std::size_t n = system.number_of_vertices;
+  Map_measure measure;
+  Imbalance_summary& summary = measure.imbalance;
+  double sum_of_squares = 0., squared_residuals = 0.;
+  for(std::size_t i = 0; i < n; ++i) {
+    const Vertex_imbalance v = vertex_imbalance(system, x, i);
+    squared_residuals += v.squared_residual;
+    sum_of_squares += v.imbalance * v.imbalance;
+    const double allowed = std::max(tolerance, v.rounding_floor);
+    summary.max = std::max(summary.max, v.imbalance);
+    summary.worst_ratio = std::max(summary.worst_ratio, allowed > 0. ? v.imbalance / allowed : (v.imbalance > 0. ? HUGE_VAL : 0.));
+    summary.unbalanced_vertices += !(v.imbalance <= allowed);
+    summary.vertices_at_rounding_floor += v.rounding_floor > tolerance;
+  }
+  summary.rms = std::sqrt(sum_of_squares / static_cast<double>(std::max<std::size_t>(n, 1)));
+  measure.residual = std::sqrt(squared_residuals) / static_cast<double>(std::max<std::size_t>(n, 1));
+  return measure;
 }
 
 } // namespace internal

@@ -37,8 +37,9 @@ namespace internal {
 
 class Global_newton {
 public:
-  explicit Global_newton(const Sphere_system& system, bool preserve_bijectivity = true)
-    : system_(system), preserve_bijectivity_(preserve_bijectivity) {}
+  Global_newton(const Sphere_system& system, const Solver_tuning& tuning, bool preserve_bijectivity = true)
+    : system_(system), tuning_(tuning), preserve_bijectivity_(preserve_bijectivity),
+      marquardt_(tuning.marquardt_initial), damping_(tuning.cautious_damping) {}
 
   // One Newton step; returns false when no acceptable step was found, or when `options` asked to stop in the middle
   // (then cancelled() is true).
@@ -69,18 +70,16 @@ public:
       for(std::size_t k = system_.offsets[i]; k < system_.offsets[i + 1]; ++k) {
         const std::size_t j = static_cast<std::size_t>(system_.neighbors[k]);
         const double w = system_.weights[k] * scale;
-        const std::array<std::size_t, 4>& b = block_slots_[k];
-        values[b[0]] = w * dot(t1_[i], t1_[j]);
-        values[b[1]] = w * dot(t1_[i], t2_[j]);
-        values[b[2]] = w * dot(t2_[i], t1_[j]);
-        values[b[3]] = w * dot(t2_[i], t2_[j]);
+        const std::array<std::size_t, 4>& slot = block_slots_[k];
+        const std::array<double, 4> block = tangent_block(w, t1_[i], t2_[i], t1_[j], t2_[j]);
+        for(int b = 0; b < 4; ++b) values[slot[b]] = block[b];
       }
     }
     const Eigen::SparseMatrix<double>& jacobian = jacobian_;
 
     // Symmetric weights: plain Newton. Otherwise the rotations are not an exact null space of the equations,
     // and Newton's step blows up along them: take Levenberg-Marquardt steps (J^T J + mu I) d = J^T rhs instead.
-    for(int attempt = 0; attempt < (system_.symmetric ? 1 : 6); ++attempt) {
+    for(int attempt = 0; attempt < (system_.symmetric ? 1 : tuning_.marquardt_attempts); ++attempt) {
       if(attempt > 0 && options != nullptr && options->cancel_requested()) { cancelled_ = true; return false; }
       Eigen::VectorXd delta;
       if(system_.symmetric) {
@@ -107,7 +106,7 @@ public:
         if(!system_.symmetric) marquardt_ = accepted_t == 1. ? std::max(marquardt_ / 3., 1e-12) : marquardt_ * 2.;
         return true;
       }
-      marquardt_ = std::min(marquardt_ * 10., 1e6);
+      marquardt_ = std::min(marquardt_ * 10., tuning_.marquardt_max);
     }
     return false;
   }
@@ -125,22 +124,24 @@ private:
     remove_rotation(x, displacement);
 
     std::vector<Vector3> trial(n);
-    for(double t = 1.; t > 1e-6; t *= 0.5) {
-      for(std::size_t i = 0; i < n; ++i) {
-        Vector3 y = x[i] + t * displacement[i];
-        trial[i] = y * (1. / length(y));
-      }
-      const bool keeps = !preserve_bijectivity_ || state.keeps_positive_faces(trial);
-      const double trial_residual = compute_residuals(system_, trial).paper;
-      if(!keeps) continue;
-      if(trial_residual < residual) {
-        state.assign(trial);
-        residual = trial_residual;
-        accepted_t = t;
-        return true;
-      }
-    }
-    return false;
+    double trial_residual = 0.;
+    accepted_t = backtracking_line_search(
+        tuning_.cautious_min_step,
+        [&](double t) {
+          for(std::size_t i = 0; i < n; ++i) {
+            Vector3 y = x[i] + t * displacement[i];
+            trial[i] = y * (1. / length(y));
+          }
+          return !preserve_bijectivity_ || state.keeps_positive_faces(trial);
+        },
+        [&](double) {
+          trial_residual = compute_residuals(system_, trial).paper;
+          return trial_residual < residual;
+        });
+    if(accepted_t == 0.) return false;
+    state.assign(trial, preserve_bijectivity_);
+    residual = trial_residual;
+    return true;
   }
 
   // Subtracts the infinitesimal rotation omega x x_i that best fits the displacements (least squares):
@@ -200,9 +201,7 @@ private:
     jacobian_.setFromTriplets(triplets.begin(), triplets.end());
     jacobian_.makeCompressed();
     auto slot = [&](std::size_t row, std::size_t column) {
-      const int* begin = jacobian_.innerIndexPtr() + jacobian_.outerIndexPtr()[column];
-      const int* end = jacobian_.innerIndexPtr() + jacobian_.outerIndexPtr()[column + 1];
-      return static_cast<std::size_t>(std::lower_bound(begin, end, int(row)) - jacobian_.innerIndexPtr());
+      return compressed_slot(jacobian_, static_cast<Eigen::Index>(row), static_cast<Eigen::Index>(column));
     };
     auto block = [&](std::size_t i, std::size_t j) {
       return std::array<std::size_t, 4>{slot(2 * i, 2 * j), slot(2 * i, 2 * j + 1), slot(2 * i + 1, 2 * j), slot(2 * i + 1, 2 * j + 1)};
@@ -216,57 +215,48 @@ private:
   }
 
   const Sphere_system& system_;
+  const Solver_tuning& tuning_;
   bool preserve_bijectivity_;
   Eigen::SparseMatrix<double> jacobian_;
   std::vector<std::array<std::size_t, 4>> diagonal_slots_, block_slots_;
   bool ldlt_analyzed_ = false;
   bool cancelled_ = false;
   Eigen::Index analyzed_nonzeros_ = 0;  // of the normal matrix J^T J (non-symmetric weights)
-  double marquardt_ = 1e-6;  // relative Levenberg-Marquardt shift (non-symmetric weights)
-  double damping_ = 1e-10;  // relative diagonal shift: keeps the rotations from blowing up the step
+  double marquardt_;  // relative Levenberg-Marquardt shift (non-symmetric weights)
+  double damping_;    // relative diagonal shift: keeps the rotations from blowing up the step
   std::vector<Vector3> t1_, t2_;
   Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>, Eigen::Lower, Eigen::MetisOrdering<int>> ldlt_;
   Eigen::SparseLU<Eigen::SparseMatrix<double>, Eigen::COLAMDOrdering<int>> lu_;
 };
 
-// Cautious global Newton steps until Res < tolerance with no non-positive face; a batch of local Newton sweeps
-// whenever no acceptable global step exists, then Newton again.
+// Cautious global Newton steps until the convergence test holds; a batch of local Newton sweeps whenever no
+// acceptable global step exists, then Newton again. When it does not converge, the best iterate is returned.
+// Stagnation: non-symmetric weights (mean value) generally admit no exact solution, because the three torque
+// identities that make the equations consistent for symmetric weights fail; the residual then levels off at a
+// least-squares floor (tuning.cautious_stagnation_window).
 inline Iteration_report cautious_newton(Sphere_state& state, const Iteration_options& options, const Stopwatch& clock)
 {
-  Iteration_report report;
-  Global_newton newton(state.system(), options.preserve_bijectivity);
+  const Solver_tuning& tuning = options.tuning;
+  Iteration_driver driver(state, options, clock, "global newton", options.max_newton_sweeps);
+  driver.watch_stagnation(tuning.cautious_stagnation_window);
+  Global_newton newton(state.system(), tuning, options.preserve_bijectivity);
   state.refresh_sums();
-  double residual = compute_residuals(state.system(), state.positions()).paper;
-  std::size_t local_sweeps = 0;
-  // Stagnation: non-symmetric weights (mean value) generally admit no exact solution, because the three torque
-  // identities that make the equations consistent for symmetric weights fail; the residual then levels off at a
-  // least-squares floor. Stop when 200 steps gained less than 1% in all.
-  std::vector<double> history;
-  while(!has_converged(state.system(), state.positions(), residual, state.invalid_faces(), options)) {
-    if(report.sweeps >= options.max_newton_sweeps) break;
-    if(past_time_budget(options, clock)) { report.out_of_time = true; break; }
+  double residual = driver.measure().residual;
+  driver.keep_best_iterate();
+  while(driver.may_start()) {
     if(!newton.step(state, residual, &options)) {
-      if(newton.cancelled()) { report.cancelled = true; break; }
+      if(newton.cancelled()) { driver.report().cancelled = true; break; }
       // No global step helps: relax locally for a while.
-      for(int sweep = 0; sweep < 20; ++sweep) {
+      for(int sweep = 0; sweep < tuning.cautious_local_sweeps_without_step; ++sweep)
         for(std::size_t i = 0; i < state.system().number_of_vertices; ++i)
-          if(!local_newton_step(state, i, options.preserve_bijectivity)) ++report.rejected_moves;
-        ++local_sweeps;
-      }
+          if(!local_newton_step(state, i, options.preserve_bijectivity)) ++driver.report().rejected_moves;
       state.refresh_sums();
-      residual = compute_residuals(state.system(), state.positions()).paper;
+      residual = driver.measure().residual;
     }
-    ++report.sweeps;
-    if(options.progress && !options.progress("global newton", report.sweeps, residual, state.invalid_faces())) {
-      report.cancelled = true;
-      break;
-    }
-    history.push_back(convergence_measure(state.system(), state.positions(), residual, options));
-    if(history.size() > 200 && history.back() > 0.99 * history[history.size() - 201]) { report.stagnated = true; break; }
+    if(!driver.end_iteration()) break;
   }
-  report.residual = residual;
-  report.converged = has_converged(state.system(), state.positions(), residual, state.invalid_faces(), options);
-  return report;
+  if(!driver.converged()) driver.restore_best();
+  return driver.finish();
 }
 
 // True when every raw weight is the same (Tutte's weights, up to a factor).
@@ -280,10 +270,6 @@ inline bool has_tutte_weights(const Sphere_system& system)
   return true;
 }
 
-// Iterations of Newton's steps through folds before the bijectivity-preserving ones take over: the meshes that
-// converge this way (CGAL's and ../shared's 66 closed genus-0 meshes, uniform weights) need at most about 20.
-constexpr std::size_t free_newton_patience = 30;
-
 // Newton's full steps through folds from the current map; when they do not converge (nor were stopped), once more
 // from the same map with the line search on the scale-free imbalances instead of Res (see Step_merit: Res led
 // some steps along the boosts towards a collapse). The first phase from the two-disk guess and on each multilevel
@@ -292,11 +278,11 @@ inline Iteration_report full_newton_steps(Sphere_state& state, const Iteration_o
                                           Boost_aim boost_aim = Boost_aim::MAXIMUM)
 {
   const std::vector<Vector3> start = state.positions();
-  Iteration_report report = mobius_newton(state, options, clock, nullptr, free_newton_patience, true, Step_merit::RESIDUAL, boost_aim);
+  Iteration_report report = mobius_newton(state, options, clock, nullptr, options.tuning.free_newton_patience, true, Step_merit::RESIDUAL, boost_aim);
   if(report.converged || report.cancelled || report.out_of_time) return report;
   state.assign(start);
   const Iteration_report first = report;
-  report = mobius_newton(state, options, clock, nullptr, free_newton_patience, true, Step_merit::IMBALANCE, boost_aim);
+  report = mobius_newton(state, options, clock, nullptr, options.tuning.free_newton_patience, true, Step_merit::IMBALANCE, boost_aim);
   report.sweeps += first.sweeps;
   report.linear_iterations += first.linear_iterations;
   return report;
@@ -312,13 +298,13 @@ inline Iteration_report global_newton(Sphere_state& state, const Iteration_optio
   if(!system.symmetric) return cautious_newton(state, options, clock);
   // Full Newton steps through folds first: on most meshes the fastest way to the balanced map (4 to 20 steps).
   Mobius_newton_statistics statistics;
-  Iteration_report free_steps = mobius_newton(state, options, clock, &statistics, free_newton_patience, true);
+  Iteration_report free_steps = mobius_newton(state, options, clock, &statistics, options.tuning.free_newton_patience, true);
   if(free_steps.converged || free_steps.cancelled || free_steps.out_of_time) return free_steps;
   // Otherwise from where it started (restored: its best iterate has the fewest non-positive faces), with every step
   // keeping every positive triangle positive.
   Iteration_options remaining_options = options;
   remaining_options.max_newton_sweeps = options.max_newton_sweeps > free_steps.sweeps ? options.max_newton_sweeps - free_steps.sweeps : 0;
-  Iteration_report report = mobius_newton(state, remaining_options, clock, &statistics);
+  Iteration_report report = mobius_newton(state, remaining_options, clock, &statistics, options.tuning.cautious_patience);
   report.sweeps += free_steps.sweeps;
   report.linear_iterations += free_steps.linear_iterations;
   if(!statistics.gave_up) return report;
@@ -329,8 +315,9 @@ inline Iteration_report global_newton(Sphere_state& state, const Iteration_optio
     report.sweeps += continuation.newton_steps;
     report.continuation_parameter = continuation.last_parameter;
     if(continuation.reached) {
-      report.residual = compute_residuals(system, state.positions()).paper;
-      report.converged = has_converged(system, state.positions(), report.residual, state.invalid_faces(), options);
+      const Map_measure measure = measure_map(system, state.positions(), options.tolerance);
+      report.residual = measure.residual;
+      report.converged = has_converged(measure, state.invalid_faces(), options);
       report.stagnated = false;
       if(report.converged) return report;
     }

@@ -19,7 +19,8 @@
 
 #include <CGAL/Spherical_parameterization/internal/Sphere_system.h>
 #include <CGAL/Spherical_parameterization/internal/Vector3.h>
-#include <CGAL/Spherical_parameterization/internal/sphere_iterations.h>
+#include <CGAL/Spherical_parameterization/internal/Sphere_state.h>
+#include <CGAL/Spherical_parameterization/internal/iteration_driver.h>
 
 #include <Eigen/Dense>
 
@@ -184,10 +185,10 @@ enum class Boost_aim { MAXIMUM, ROOT };
 // differences with MAXIMUM), each step shortened until g shrinks or E grows (away from the collapse, where E = 0;
 // near the solution E no longer resolves the change and g decides) and every positive face stays positive. With
 // Boost_aim::MAXIMUM, a Newton step that does not go up E is replaced by the gradient. Stops when |g| <= target,
-// after `max_iterations`, or when no step helps. Returns the number of boosts applied.
+// after tuning.boost_max_iterations, or when no step helps. Returns the number of boosts applied.
 // `w`: symmetric_raw_weights(state.system()), computed once by a caller that balances the boosts again and again.
 inline std::size_t balance_boosts(Sphere_state& state, const std::vector<double>& w, double target,
-                                  std::size_t max_iterations, Boost_aim aim = Boost_aim::MAXIMUM)
+                                  const Solver_tuning& tuning, Boost_aim aim = Boost_aim::MAXIMUM)
 {
   const Sphere_system& system = state.system();
   const std::vector<Vector3>& x = state.positions();
@@ -206,7 +207,7 @@ inline std::size_t balance_boosts(Sphere_state& state, const std::vector<double>
   Eigen::Vector3d g;
   double energy = 0.;
   spring_energy_and_boost_gradient(system, w, x, &energy, &g);
-  for(std::size_t iteration = 0; iteration < max_iterations; ++iteration) {
+  for(std::size_t iteration = 0; iteration < tuning.boost_max_iterations; ++iteration) {
     if(!(g.norm() > target)) break;
     Eigen::Matrix3d slope;
     if(aim == Boost_aim::ROOT) {
@@ -223,18 +224,21 @@ inline std::size_t balance_boosts(Sphere_state& state, const std::vector<double>
     // Newton's step for g(c) = 0 (see Boost_aim).
     Eigen::Vector3d c = -slope.partialPivLu().solve(g);
     if(!c.allFinite() || (aim == Boost_aim::MAXIMUM && !(-g.dot(c) > 0.))) c = -g;
-    if(c.norm() > 1.) c *= 1. / c.norm();
-    bool accepted = false;
+    if(c.norm() > tuning.boost_max_step) c *= tuning.boost_max_step / c.norm();
     double trial_energy = 0.;
     Eigen::Vector3d trial_gradient;
-    for(double t = 1.; t > 1e-3; t *= 0.5) {
-      boosted(t * c);
-      if(!state.keeps_positive_faces(y)) continue;
-      spring_energy_and_boost_gradient(system, w, y, &trial_energy, &trial_gradient);
-      if(trial_energy > energy || trial_gradient.norm() < g.norm()) { accepted = true; break; }
-    }
-    if(!accepted) break;
-    state.assign(y);
+    const double accepted = backtracking_line_search(
+        tuning.boost_min_step,
+        [&](double t) {
+          boosted(t * c);
+          return state.keeps_positive_faces(y);
+        },
+        [&](double) {
+          spring_energy_and_boost_gradient(system, w, y, &trial_energy, &trial_gradient);
+          return trial_energy > energy || trial_gradient.norm() < g.norm();
+        });
+    if(accepted == 0.) break;
+    state.assign(y, true);
     energy = trial_energy;
     g = trial_gradient;
     ++applied;
@@ -242,10 +246,10 @@ inline std::size_t balance_boosts(Sphere_state& state, const std::vector<double>
   return applied;
 }
 
-inline std::size_t balance_boosts(Sphere_state& state, double target, std::size_t max_iterations,
+inline std::size_t balance_boosts(Sphere_state& state, double target, const Solver_tuning& tuning = Solver_tuning(),
                                   Boost_aim aim = Boost_aim::MAXIMUM)
 {
-  return balance_boosts(state, symmetric_raw_weights(state.system()), target, max_iterations, aim);
+  return balance_boosts(state, symmetric_raw_weights(state.system()), target, tuning, aim);
 }
 
 } // namespace internal

@@ -27,29 +27,9 @@ namespace internal {
 
 struct Mobius_newton_statistics {
   std::size_t newton_steps = 0;    // accepted Newton steps
-  std::size_t full_steps = 0;      // of which taken whole (t = 1)
-  std::size_t boosts = 0;          // balancing boosts applied
   bool gave_up = false;            // Newton's steps were too short: the caller should continue otherwise
   std::size_t linear_iterations = 0;  // MINRES iterations (iterative linear solves only)
 };
-
-// Newton's linear systems are solved by MINRES with the multigrid preconditioner (tangent_krylov_system.h) from this
-// many vertices on, by a sparse factorization below. Measured per Newton step (2 threads, this package's AMG): a
-// factorization costs 0.02 s at 3k vertices, 0.3 s at 38k (bunny00), 7 s at 134k (igea) and grows like n^1.5; MINRES
-// costs 0.05 to 0.1 s at 38k and grows like n. Below a few thousand vertices both take milliseconds, and the exact
-// step is the more robust on small meshes with thin parts (CGAL's cow and hand: 1e-2-inexact steps from the initial
-// guess end on a folded balanced map where exact ones converge).
-constexpr std::size_t iterative_newton_min_vertices = 8000;
-
-// Inexact Newton (Eisenstat and Walker's second choice of the forcing term): the linear residual is reduced by
-// eta_k = 0.9 (Res_k / Res_{k-1})^2, at most `newton_max_forcing` (looser steps, 0.1 or 0.3, wander on igea and man:
-// measured) and at least `newton_min_forcing`. A step the line search rejects is solved again with the smallest
-// forcing before the phase gives up.
-constexpr double newton_max_forcing = 1e-2;
-constexpr double newton_min_forcing = 1e-8;
-// A bound on one solve's MINRES iterations (uniform weights take 2 to 20 at the forcing, about 60 at the smallest
-// one): the iterate of MINRES is still a descent step when it stops early, and the line search judges it.
-constexpr int newton_max_minres_iterations = 200;
 
 // The signed spherical areas add up to 4 pi times the degree of the map. Folds keep the degree; a collapse of the
 // map onto a small cap, the trivial solution the boosts lead to, has to pass through a triangle larger than a
@@ -84,7 +64,10 @@ inline Iteration_report mobius_newton(Sphere_state& state, const Iteration_optio
                                       bool allow_folds = false, Step_merit step_merit = Step_merit::RESIDUAL,
                                       Boost_aim boost_aim = Boost_aim::MAXIMUM)
 {
-  Iteration_report report;
+  const Solver_tuning& tuning = options.tuning;
+  Iteration_driver driver(state, options, clock, "global newton", options.max_newton_sweeps);
+  // Full steps that lower Res forever without balancing any vertex: a drift towards collapse.
+  driver.watch_stagnation(tuning.newton_stagnation_window);
   Mobius_newton_statistics counts;
   const Sphere_system& system = state.system();
   const std::size_t n = system.number_of_vertices;
@@ -97,51 +80,42 @@ inline Iteration_report mobius_newton(Sphere_state& state, const Iteration_optio
   // needed hundreds of iterations per step (c3d_igea: 2,973 in 22 steps, 197 s against 48 s factorized).
   bool positive_weights = true;
   for(double w : system.weights) positive_weights = positive_weights && w > 0.;
-  const bool iterative = allow_folds && positive_weights && n >= iterative_newton_min_vertices;
+  const bool iterative = allow_folds && positive_weights && n >= tuning.iterative_newton_min_vertices;
   Tangent_krylov_system krylov(system);
   const std::vector<double> boost_weights = symmetric_raw_weights(system);
-  double forcing = newton_max_forcing;
+  double forcing = tuning.newton_max_forcing;
   std::vector<Vector3> step, trial(n);
-  double residual = compute_residuals(system, x).paper;
-  auto merit_of = [&](const std::vector<Vector3>& y) {
-    return step_merit == Step_merit::IMBALANCE ? imbalance_merit(system, y) : compute_residuals(system, y).paper;
+  // What the line search lowers (see Step_merit).
+  auto merit_of = [&](const Map_measure& measure) {
+    return step_merit == Step_merit::IMBALANCE ? measure.imbalance.rms : measure.residual;
   };
-  double merit = merit_of(x);  // what the line search lowers
-  // The best iterate: the lowest imbalances among those with the fewest non-positive faces (never Res: the
-  // iterate of lowest Res can be the most collapsed one).
+  double residual = driver.measure().residual;
   const std::vector<Vector3> start = x;
-  std::vector<Vector3> best = x;
-  double best_merit = imbalance_merit(system, x);
-  std::size_t best_invalid = state.invalid_faces();
+  driver.keep_best_iterate();
   std::size_t short_steps = 0;
-  std::vector<double> history;
-  while(!has_converged(system, x, residual, state.invalid_faces(), options)) {
-    if(report.sweeps >= options.max_newton_sweeps) break;
-    if(allow_folds && (report.sweeps >= patience ||
-                       (state.invalid_faces() > 0 && summarize_imbalance(system, x, options.tolerance).balanced()))) {
+  while(driver.may_start()) {
+    if(allow_folds && (driver.iterations() >= patience ||
+                       (state.invalid_faces() > 0 && driver.measure().imbalance.balanced()))) {
       counts.gave_up = true;
       break;
     }
-    if(past_time_budget(options, clock)) { report.out_of_time = true; break; }
 
     // The boost gradient only needs to be small next to the residual forces that Newton is about to remove.
-    counts.boosts += balance_boosts(state, boost_weights, 1e-3 * residual * static_cast<double>(n), 8, boost_aim);
-    if(options.cancel_requested()) { report.cancelled = true; break; }
-    if(past_time_budget(options, clock)) { report.out_of_time = true; break; }
+    balance_boosts(state, boost_weights, tuning.boost_target_factor * residual * static_cast<double>(n), tuning, boost_aim);
+    if(!driver.within_budget()) break;
     const double previous_residual = residual;
-    residual = compute_residuals(system, x).paper;
-    merit = merit_of(x);
+    residual = driver.measure().residual;
+    const double merit = merit_of(driver.measure());
 
-    double accepted_t = 0.;
     bool has_step = false;
     if(iterative) {
-      has_step = krylov.assemble(x) && krylov.solve(step, forcing, newton_max_minres_iterations);
+      has_step = krylov.assemble(x) && krylov.solve(step, forcing, tuning.newton_max_minres_iterations);
       counts.linear_iterations += static_cast<std::size_t>(krylov.last_iterations());
     } else {
       has_step = newton.factorize(x) && newton.solve(step, allow_folds);
     }
-    if(options.cancel_requested()) { report.cancelled = true; break; }
-    if(past_time_budget(options, clock)) { report.out_of_time = true; break; }
+    if(!driver.within_budget()) break;
+    double accepted_t = 0.;
     if(has_step) {
       Vector3 rotation, boost;
       remove_rotation_and_boost(x, step, rotation, boost);
@@ -149,32 +123,34 @@ inline Iteration_report mobius_newton(Sphere_state& state, const Iteration_optio
       // to the other directions. Its boost part is Newton's estimate along the nearly singular directions, poor
       // after the balancing (0.1 to 5 on bunny00's finest level, where it cost 15 steps instead of 6).
       if(boost_aim == Boost_aim::ROOT) boost = Vector3();
-      for(double t = 1.; t > 1e-3; t *= 0.5) {
-        for(std::size_t i = 0; i < n; ++i) {
-          const Vector3 y = x[i] + t * step[i];
-          trial[i] = apply_boost(y * (1. / length(y)), t * boost);
-        }
-        if(allow_folds ? !has_degree_one(system, trial) : options.preserve_bijectivity && !state.keeps_positive_faces(trial)) continue;
-        const double trial_merit = merit_of(trial);
-        if(trial_merit < merit) {
-          state.assign(trial);
-          merit = trial_merit;
-          residual = compute_residuals(system, x).paper;
-          accepted_t = t;
-          ++counts.newton_steps;
-          if(t == 1.) ++counts.full_steps;
-          break;
-        }
+      accepted_t = backtracking_line_search(
+          tuning.newton_min_step,
+          [&](double t) {
+            for(std::size_t i = 0; i < n; ++i) {
+              const Vector3 y = x[i] + t * step[i];
+              trial[i] = apply_boost(y * (1. / length(y)), t * boost);
+            }
+            return allow_folds ? has_degree_one(system, trial) : !options.preserve_bijectivity || state.keeps_positive_faces(trial);
+          },
+          [&](double) {
+            const double trial_merit = step_merit == Step_merit::IMBALANCE ? imbalance_merit(system, trial)
+                                                                           : compute_residuals(system, trial).paper;
+            return trial_merit < merit;
+          });
+      if(accepted_t > 0.) {
+        state.assign(trial, !allow_folds && options.preserve_bijectivity);
+        residual = driver.measure().residual;
+        ++counts.newton_steps;
       }
     }
     if(iterative) {
-      if(accepted_t == 0. && forcing > newton_min_forcing) {
-        forcing = newton_min_forcing;  // the same point again, with a nearly exact step
-        ++report.sweeps;
+      if(accepted_t == 0. && forcing > tuning.newton_min_forcing) {
+        forcing = tuning.newton_min_forcing;  // the same point again, with a nearly exact step
+        driver.count_retry();
         continue;
       }
       const double ratio = previous_residual > 0. ? residual / previous_residual : 1.;
-      forcing = std::min(newton_max_forcing, std::max(newton_min_forcing, 0.9 * ratio * ratio));
+      forcing = std::min(tuning.newton_max_forcing, std::max(tuning.newton_min_forcing, 0.9 * ratio * ratio));
     }
     if(accepted_t == 0. && allow_folds) {
       counts.gave_up = true;
@@ -183,46 +159,32 @@ inline Iteration_report mobius_newton(Sphere_state& state, const Iteration_optio
     if(accepted_t == 0.) {
       // No acceptable step: the paper's local Newton sweeps (which keep every positive triangle positive) move
       // the iterate, so that the next Newton step starts elsewhere.
-      for(int sweep = 0; sweep < 5; ++sweep)
+      for(int sweep = 0; sweep < tuning.local_sweeps_without_step; ++sweep)
         for(std::size_t i = 0; i < n; ++i)
-          if(!local_newton_step(state, i, options.preserve_bijectivity)) ++report.rejected_moves;
+          if(!local_newton_step(state, i, options.preserve_bijectivity)) ++driver.report().rejected_moves;
       state.refresh_sums();
-      residual = compute_residuals(system, x).paper;
-      merit = merit_of(x);
+      residual = driver.measure().residual;
     }
-    ++report.sweeps;
-    const double current_merit = imbalance_merit(system, x);
-    if(state.invalid_faces() < best_invalid || (state.invalid_faces() == best_invalid && current_merit < best_merit)) {
-      best = x;
-      best_merit = current_merit;
-      best_invalid = state.invalid_faces();
-    }
-    if(options.progress && !options.progress("global newton", report.sweeps, residual, state.invalid_faces())) {
-      report.cancelled = true;
+    if(!driver.end_iteration()) {
+      counts.gave_up = driver.report().stagnated;
       break;
     }
-    short_steps = accepted_t >= 0.25 ? 0 : short_steps + 1;
+    short_steps = accepted_t >= tuning.short_step ? 0 : short_steps + 1;
     if(!allow_folds && short_steps >= patience) { counts.gave_up = true; break; }
-    // Full steps that lower Res forever without balancing any vertex: a drift towards collapse.
-    history.push_back(convergence_measure(system, x, residual, options));
-    if(history.size() > 50 && history.back() > 0.99 * history[history.size() - 51]) { counts.gave_up = true; break; }
   }
+  Iteration_report& report = driver.report();
   // A collapse onto a great circle can pass the orientation test with a small residual; the areas expose it,
   // and then none of these iterates is trusted.
-  if(!counts.gave_up && has_converged(system, x, residual, state.invalid_faces(), options) && !certify(system.triangles, x).bijective) {
+  if(!counts.gave_up && driver.converged() && !certify(system.triangles, x).bijective) {
     counts.gave_up = true;
-    best = start;
+    driver.restore(start);
+  } else if(counts.gave_up || report.cancelled || report.out_of_time) {
+    driver.restore_best();
   }
-  if(counts.gave_up || report.cancelled || report.out_of_time) {
-    state.assign(best);
-    residual = compute_residuals(system, x).paper;
-  }
-  report.residual = residual;
-  report.converged = has_converged(system, x, residual, state.invalid_faces(), options);
   report.stagnated = counts.gave_up;
   report.linear_iterations = counts.linear_iterations;
   if(statistics != nullptr) *statistics = counts;
-  return report;
+  return driver.finish();
 }
 
 } // namespace internal

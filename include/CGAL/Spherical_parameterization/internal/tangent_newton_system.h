@@ -85,6 +85,22 @@ inline void force_and_alpha(const Sphere_system& system, const std::vector<Vecto
   }
 }
 
+// The Jacobian builder of every Newton step in tangent coordinates: the 2x2 block of the equations of vertex i in
+// the unknowns of vertex j is w T_i^T T_j (rows: i's frame t1_i, t2_i; columns: j's), with w the raw weight; the
+// diagonal block is -alpha_i I (force_and_alpha). In the order (t1.t1, t1.t2, t2.t1, t2.t2).
+inline std::array<double, 4> tangent_block(double w, const Vector3& t1_i, const Vector3& t2_i, const Vector3& t1_j, const Vector3& t2_j)
+{
+  return {w * dot(t1_i, t1_j), w * dot(t1_i, t2_j), w * dot(t2_i, t1_j), w * dot(t2_i, t2_j)};
+}
+
+// Where the values of the 2x2 blocks sit in a compressed column-major matrix, so that each step writes them in place.
+inline std::size_t compressed_slot(const Eigen::SparseMatrix<double>& matrix, Eigen::Index row, Eigen::Index column)
+{
+  const int* begin = matrix.innerIndexPtr() + matrix.outerIndexPtr()[column];
+  const int* end = matrix.innerIndexPtr() + matrix.outerIndexPtr()[column + 1];
+  return static_cast<std::size_t>(std::lower_bound(begin, end, static_cast<int>(row)) - matrix.innerIndexPtr());
+}
+
 class Tangent_newton_system {
 public:
   explicit Tangent_newton_system(const Sphere_system& system) : system_(system) {}
@@ -122,10 +138,8 @@ public:
         const double w = system_.weights[k] * system_.row_sums[i];
         if(rank_[i] < rank_[j]) {
           const std::array<std::size_t, 4>& slot = block_slots_[k];
-          value[slot[0]] = w * dot(t1_[i], t1_[j]);
-          value[slot[1]] = w * dot(t1_[i], t2_[j]);
-          value[slot[2]] = w * dot(t2_[i], t1_[j]);
-          value[slot[3]] = w * dot(t2_[i], t2_[j]);
+          const std::array<double, 4> block = tangent_block(w, t1_[i], t2_[i], t1_[j], t2_[j]);
+          for(int b = 0; b < 4; ++b) value[slot[b]] = block[b];
         }
       }
       const std::array<std::size_t, 3>& d = diagonal_slots_[i];
@@ -249,11 +263,7 @@ private:
     matrix_.resize(static_cast<Eigen::Index>(2 * n), static_cast<Eigen::Index>(2 * n));
     matrix_.setFromTriplets(triplets.begin(), triplets.end());
     matrix_.makeCompressed();
-    auto slot = [&](Eigen::Index row, Eigen::Index column) {
-      const int* begin = matrix_.innerIndexPtr() + matrix_.outerIndexPtr()[column];
-      const int* end = matrix_.innerIndexPtr() + matrix_.outerIndexPtr()[column + 1];
-      return static_cast<std::size_t>(std::lower_bound(begin, end, static_cast<int>(row)) - matrix_.innerIndexPtr());
-    };
+    auto slot = [&](Eigen::Index row, Eigen::Index column) { return compressed_slot(matrix_, row, column); };
     diagonal_slots_.resize(n);
     block_slots_.assign(system_.neighbors.size(), {0, 0, 0, 0});
     for(std::size_t i = 0; i < n; ++i) {

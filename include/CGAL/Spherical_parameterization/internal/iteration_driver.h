@@ -1,0 +1,222 @@
+// The loop that every iterative stage shares (stage 2's Gauss-Seidel, the paper's local Newton, the Moebius-aware
+// and the cautious Newton): Iteration_driver owns the caps, the time budget, progress and cancellation, stagnation,
+// the best iterate and the counters; a stage supplies only its iteration. It also measures each iterate once (Res
+// and every imbalance in one pass: measure_map), where the stopping test, the stagnation rule and the best-iterate
+// rule each used to measure it again. backtracking_line_search() is the line search of every global step.
+
+#ifndef CGAL_SPHERICAL_PARAMETERIZATION_INTERNAL_ITERATION_DRIVER_H
+#define CGAL_SPHERICAL_PARAMETERIZATION_INTERNAL_ITERATION_DRIVER_H
+
+#include <CGAL/Spherical_parameterization/internal/Sphere_state.h>
+#include <CGAL/Spherical_parameterization/internal/Sphere_system.h>
+#include <CGAL/Spherical_parameterization/internal/solver_tuning.h>
+
+#include <chrono>
+#include <cstddef>
+#include <functional>
+#include <vector>
+
+namespace CGAL {
+namespace Spherical_parameterization {
+namespace internal {
+
+struct Iteration_options {
+  double tolerance = 1e-6;
+  Convergence_test convergence_test = Convergence_test::IMBALANCE;
+  std::size_t max_gauss_seidel_sweeps = 1000;
+  std::size_t max_newton_sweeps = 200000;
+  double max_seconds = -1.;           // negative: no budget
+  bool preserve_bijectivity = true;
+  Solver_tuning tuning;
+  // Called after every sweep; returning false cancels the iterations.
+  std::function<bool(const char* stage, std::size_t sweep, double residual, std::size_t invalid_faces)> progress;
+  // Polled inside long iterations (it repeats the last progress report); returning false cancels.
+  std::function<bool()> keep_going;
+
+  bool cancel_requested() const { return keep_going && !keep_going(); }
+};
+
+struct Iteration_report {
+  std::size_t sweeps = 0;
+  double residual = -1.;
+  bool converged = false;
+  bool out_of_time = false;
+  bool stagnated = false;       // the convergence measure stopped decreasing before the tolerance
+  bool cancelled = false;       // the progress callback asked to stop
+  std::size_t rejected_moves = 0;
+  std::size_t linear_iterations = 0;    // iterations of the iterative linear solver (MINRES), if one ran
+  double continuation_parameter = -1.;  // how far the continuation from Tutte's weights got (-1: not tried)
+};
+
+class Stopwatch {
+public:
+  Stopwatch() : start_(std::chrono::steady_clock::now()) {}
+  double seconds() const { return std::chrono::duration<double>(std::chrono::steady_clock::now() - start_).count(); }
+private:
+  std::chrono::steady_clock::time_point start_;
+};
+
+// The time budget, checked between iterations and, inside the long ones, between their parts.
+inline bool past_time_budget(const Iteration_options& options, const Stopwatch& clock)
+{
+  return options.max_seconds >= 0. && clock.seconds() > options.max_seconds;
+}
+
+// The stopping test of every solver: no non-positive face, and every vertex balanced in its own scale (or the
+// paper's Res below the tolerance, when that test was chosen).
+inline bool has_converged(const Map_measure& measure, std::size_t invalid_faces, const Iteration_options& options)
+{
+  if(invalid_faces != 0) return false;
+  if(options.convergence_test == Convergence_test::PAPER_RESIDUAL) return measure.residual < options.tolerance;
+  return measure.imbalance.balanced();
+}
+
+// What the stagnation rules watch: the quantity the convergence test bounds (the worst imbalance over its allowed
+// value, or Res). Res alone keeps falling on a map that drifts towards collapse while no vertex gets balanced.
+inline double convergence_measure(const Map_measure& measure, const Iteration_options& options)
+{
+  return options.convergence_test == Convergence_test::PAPER_RESIDUAL ? measure.residual : measure.imbalance.worst_ratio;
+}
+
+// Backtracking along a step: t = 1, 1/2, 1/4, ... while t > min_step. `admissible(t)` builds the trial point at t and
+// says whether it may be judged at all (orientation or degree kept); `acceptable(t)` judges it (a merit decreased).
+// Returns the t taken, 0 when none was.
+template <typename Admissible, typename Acceptable>
+double backtracking_line_search(double min_step, Admissible&& admissible, Acceptable&& acceptable)
+{
+  for(double t = 1.; t > min_step; t *= 0.5) {
+    if(!admissible(t)) continue;
+    if(acceptable(t)) return t;
+  }
+  return 0.;
+}
+
+class Iteration_driver {
+public:
+  // `stage`: the name in progress reports; `max_iterations`: the cap.
+  Iteration_driver(Sphere_state& state, const Iteration_options& options, const Stopwatch& clock, const char* stage,
+                   std::size_t max_iterations)
+    : state_(state), options_(options), clock_(clock), stage_(stage), max_iterations_(max_iterations) {}
+
+  // Stop when the convergence measure fell by less than 1 - tuning.stagnation_ratio over `window` iterations.
+  void watch_stagnation(std::size_t window) { stagnation_window_ = window; }
+
+  // Keep the best iterate from now on: the fewest non-positive faces, then the lowest imbalances (root mean square;
+  // never Res: the iterate of lowest Res can be the most collapsed one). restore_best() puts it back.
+  void keep_best_iterate()
+  {
+    keep_best_ = true;
+    const Map_measure& now = measure();
+    best_ = state_.positions();
+    best_invalid_ = state_.invalid_faces();
+    best_imbalance_ = now.imbalance.rms;
+  }
+
+  // The measures of the current iterate, computed once per change of the positions. `residual`, when given,
+  // replaces Res (the paper's sweeps compute their own from the cached sums, in another rounding).
+  const Map_measure& measure()
+  {
+    if(!measured_ || measured_revision_ != state_.revision()) {
+      measure_ = measure_map(state_.system(), state_.positions(), options_.tolerance);
+      measured_ = true;
+      measured_revision_ = state_.revision();
+    }
+    return measure_;
+  }
+  const Map_measure& measure(double residual)
+  {
+    measure();
+    measure_.residual = residual;
+    return measure_;
+  }
+
+  bool converged() { return has_converged(measure(), state_.invalid_faces(), options_); }
+
+  // Whether another iteration may start: the map is not converged yet (when `test_convergence`), the cap is not
+  // reached, and the time budget is not spent (report().out_of_time).
+  bool may_start(bool test_convergence = true)
+  {
+    if(test_convergence && converged()) return false;
+    if(report_.sweeps >= max_iterations_) return false;
+    return within_budget(false);
+  }
+
+  // Between the parts of a long iteration: false when a cancel was asked for (report().cancelled) or the time budget
+  // is spent (report().out_of_time).
+  bool within_budget(bool poll_cancel = true)
+  {
+    if(poll_cancel && options_.cancel_requested()) { report_.cancelled = true; return false; }
+    if(past_time_budget(options_, clock_)) { report_.out_of_time = true; return false; }
+    return true;
+  }
+
+  // An iteration that produced no new iterate but counts against the cap (it is not reported).
+  void count_retry() { ++report_.sweeps; }
+
+  // After an iteration: counts it, measures the new iterate (`residual`: as in measure()), keeps the best, reports
+  // progress and watches stagnation. False when the loop must stop: cancelled, or stagnated (report().stagnated).
+  bool end_iteration(double residual = -1.)
+  {
+    ++report_.sweeps;
+    const Map_measure& now = residual >= 0. ? measure(residual) : measure();
+    if(keep_best_) {
+      const std::size_t invalid = state_.invalid_faces();
+      if(invalid < best_invalid_ || (invalid == best_invalid_ && now.imbalance.rms < best_imbalance_)) {
+        best_ = state_.positions();
+        best_invalid_ = invalid;
+        best_imbalance_ = now.imbalance.rms;
+      }
+    }
+    if(options_.progress && !options_.progress(stage_, report_.sweeps, now.residual, state_.invalid_faces())) {
+      report_.cancelled = true;
+      return false;
+    }
+    if(stagnation_window_ > 0) {
+      history_.push_back(convergence_measure(now, options_));
+      if(history_.size() > stagnation_window_ &&
+         history_.back() > options_.tuning.stagnation_ratio * history_[history_.size() - 1 - stagnation_window_]) {
+        report_.stagnated = true;
+        return false;
+      }
+    }
+    return true;
+  }
+
+  // Puts the best iterate back (keep_best_iterate()), or `fallback` when given.
+  void restore_best() { if(keep_best_) state_.assign(best_); }
+  void restore(const std::vector<Vector3>& positions) { state_.assign(positions); }
+
+  // The counters and flags, with the final Res and convergence filled in.
+  Iteration_report& finish()
+  {
+    report_.residual = measure().residual;
+    report_.converged = converged();
+    return report_;
+  }
+  Iteration_report& report() { return report_; }
+  std::size_t iterations() const { return report_.sweeps; }
+  Sphere_state& state() { return state_; }
+
+private:
+  Sphere_state& state_;
+  const Iteration_options& options_;
+  const Stopwatch& clock_;
+  const char* stage_;
+  std::size_t max_iterations_;
+  Iteration_report report_;
+  Map_measure measure_;
+  bool measured_ = false;
+  std::size_t measured_revision_ = 0;
+  std::size_t stagnation_window_ = 0;
+  std::vector<double> history_;
+  bool keep_best_ = false;
+  std::vector<Vector3> best_;
+  std::size_t best_invalid_ = 0;
+  double best_imbalance_ = 0.;
+};
+
+} // namespace internal
+} // namespace Spherical_parameterization
+} // namespace CGAL
+
+#endif // CGAL_SPHERICAL_PARAMETERIZATION_INTERNAL_ITERATION_DRIVER_H

@@ -1,0 +1,79 @@
+// The tuning constants of stages 2 and 3 in one place, each with the evidence it was chosen on. They are fields (not
+// constants) so that a test or an experiment can change one without editing the solvers; the package's calls always
+// use the defaults. "The 66 meshes" are CGAL's 48 closed genus-0 sample meshes and the 18 of ../shared/meshes.
+
+#ifndef CGAL_SPHERICAL_PARAMETERIZATION_INTERNAL_SOLVER_TUNING_H
+#define CGAL_SPHERICAL_PARAMETERIZATION_INTERNAL_SOLVER_TUNING_H
+
+#include <cstddef>
+
+namespace CGAL {
+namespace Spherical_parameterization {
+namespace internal {
+
+struct Solver_tuning {
+  // --- The multilevel start (spherical_parameterize.h) ---
+  // Meshes from this many vertices on start from a coarser mesh (uniform weights, global solver).
+  std::size_t multilevel_min_vertices = 20000;
+  // Of 1/2, 1/4, 1/8 of the vertices and 3, 10 smoothing sweeps, 1/4 with 10 sweeps was the most even on bunny00 and
+  // armadillo Loop x2 (1/2 took 52 steps on bunny00 once); 30 or 60 sweeps did not lower the Newton steps.
+  double multilevel_coarsening_ratio = 0.25;
+  std::size_t multilevel_smoothing_sweeps = 10;
+
+  // --- Newton's linear systems (mobius_newton.h) ---
+  // MINRES with the multigrid preconditioner from this many vertices on, a sparse factorization below. Per Newton
+  // step (2 threads): a factorization costs 0.02 s at 3k vertices, 0.3 s at 38k (bunny00), 7 s at 134k (igea), like
+  // n^1.5; MINRES 0.05 to 0.1 s at 38k, like n. On small meshes with thin parts the exact step is the more robust
+  // (CGAL's cow and hand: 1e-2-inexact steps from the initial guess end on a folded balanced map).
+  std::size_t iterative_newton_min_vertices = 8000;
+  // Inexact Newton (Eisenstat and Walker's second forcing term): the linear residual is reduced by
+  // eta_k = 0.9 (Res_k / Res_{k-1})^2 within these bounds (looser steps, 0.1 or 0.3, wander on igea and man). A step
+  // the line search rejects is solved again with the smallest forcing before the phase gives up.
+  double newton_max_forcing = 1e-2;
+  double newton_min_forcing = 1e-8;
+  // Uniform weights take 2 to 20 MINRES iterations at the forcing, about 60 at the smallest one; an iterate of
+  // MINRES stopped early is still a descent step, and the line search judges it.
+  int newton_max_minres_iterations = 200;
+
+  // --- Newton's steps (mobius_newton.h, global_newton.h) ---
+  // Newton's full steps through folds are given this many iterations: the meshes of the 66 that converge this way
+  // need at most about 20.
+  std::size_t free_newton_patience = 30;
+  // The bijectivity-preserving steps give up after this many steps in a row cut below `short_step`.
+  std::size_t cautious_patience = 3;
+  double short_step = 0.25;
+  // Line searches halve the step down to these lengths (Moebius-aware Newton, cautious Newton, boosts).
+  double newton_min_step = 1e-3;
+  double cautious_min_step = 1e-6;
+  double boost_min_step = 1e-3;
+  // When no step is acceptable, this many of the paper's local Newton sweeps move the iterate.
+  int local_sweeps_without_step = 5;           // Moebius-aware Newton
+  int cautious_local_sweeps_without_step = 20; // cautious Newton
+
+  // --- The boosts (mobius.h) ---
+  // Before each Newton step the boosts are balanced until |g| <= boost_target_factor * Res * n (small next to the
+  // residual forces that the step removes), at most `boost_max_iterations` Newton steps on the boost parameters,
+  // each at most `boost_max_step` long (a boost of tanh(1) = 0.76 already squeezes half the sphere into a cap).
+  double boost_target_factor = 1e-3;
+  std::size_t boost_max_iterations = 8;
+  double boost_max_step = 1.;
+
+  // --- Stagnation: stop when the convergence measure (the worst imbalance over its allowance, or Res) fell by less
+  // than 1 - stagnation_ratio over the window ---
+  double stagnation_ratio = 0.99;
+  std::size_t newton_stagnation_window = 50;     // Moebius-aware Newton: full steps that lower Res without balancing
+  std::size_t cautious_stagnation_window = 200;  // cautious Newton: non-symmetric weights level off at a floor
+  std::size_t local_stagnation_window = 1000;    // the paper's local Newton
+
+  // --- Levenberg-Marquardt steps of the cautious Newton (non-symmetric weights) ---
+  double marquardt_initial = 1e-6;  // relative shift of J^T J
+  double marquardt_max = 1e6;
+  int marquardt_attempts = 6;
+  double cautious_damping = 1e-10;  // relative diagonal shift against the rotations (symmetric weights)
+};
+
+} // namespace internal
+} // namespace Spherical_parameterization
+} // namespace CGAL
+
+#endif // CGAL_SPHERICAL_PARAMETERIZATION_INTERNAL_SOLVER_TUNING_H
