@@ -97,7 +97,8 @@ void print_usage(std::ostream& out)
          "      --admissible-weights  solve with the closest symmetric positive weights instead (the mean of\n"
          "                        w_ij and w_ji, negative ones raised): the theory's case, for cotangent and\n"
          "                        mean_value weights that fail\n"
-         "  -t, --tolerance T     stop when every imbalance e_i <= T (default 1e-6)\n"
+         "  -t, --tolerance T     stop when every imbalance e_i <= T (default 1e-6); mean_value weights, which\n"
+         "                        have no exact solution: when their least-squares problem is stationary to T\n"
          "      --gauss-seidel-sweeps N  cap of stage 2, the paper's projected Gauss-Seidel (default: the\n"
          "                        library's, see the manual)\n"
          "      --criterion C     imbalance (default) or paper: stop when the paper's Res < T instead (Res\n"
@@ -135,7 +136,8 @@ void print_usage(std::ostream& out)
          "  format (\"spherical_parameterize/1\"), input, output (null if nothing written), status (e.g. \"OK\",\n"
          "  \"GENUS_NOT_ZERO\"), success, skipped (an existing output kept: most figures null), message,\n"
          "  vertices, faces, weights, criterion, tolerance, max_imbalance,\n"
-         "  imbalance_percentile_99, unbalanced_vertices, vertices_at_rounding_floor, residual (Res),\n"
+         "  imbalance_percentile_99, unbalanced_vertices, vertices_at_rounding_floor, max_stationarity and\n"
+         "  unstationary_vertices (non-symmetric weights, else null), residual (Res),\n"
          "  max_tangential_residual, flipped_faces, total_signed_area, bijective, initial_flipped_faces,\n"
          "  uniform_initial_guess_fallback, admissible_weights, raised_weights, clamped_weights, rejected_moves,\n"
          "  separator_size, cut_loop_length, levels (the multilevel start, coarsest first, [] when not used:\n"
@@ -411,6 +413,8 @@ void print_json(std::ostream& out, const SP::Result& r, const Run_figures& run)
     {"max_imbalance", json_number(r.max_imbalance, computed)},
     {"imbalance_percentile_99", json_number(r.imbalance_percentile_99, computed)},
     {"unbalanced_vertices", json_count(r.unbalanced_vertices, computed)},
+    {"max_stationarity", json_number(r.max_stationarity, computed && r.max_stationarity >= 0.)},
+    {"unstationary_vertices", json_count(r.unstationary_vertices, computed && r.max_stationarity >= 0.)},
     {"vertices_at_rounding_floor", json_count(r.vertices_at_rounding_floor, computed)},
     {"residual", json_number(r.residual, computed)},
     {"max_tangential_residual", json_number(r.max_tangential_residual, computed)},
@@ -456,7 +460,11 @@ void print_text(std::ostream& out, const SP::Result& r, const Run_figures& run)
       << r.unbalanced_vertices << (r.unbalanced_vertices == 1 ? " vertex" : " vertices") << " above the tolerance " << run.tolerance << ", "
       << r.vertices_at_rounding_floor << " held to their rounding floor; " << run.weights << " weights, stopping on "
       << run.criterion << ")\n"
-      << "Res (paper):     " << r.residual << "\n"
+      << (r.max_stationarity >= 0. ? "stationarity:    " : "") ;
+  if(r.max_stationarity >= 0.)
+    out << r.max_stationarity << " (max; " << r.unstationary_vertices << (r.unstationary_vertices == 1 ? " vertex" : " vertices")
+        << " above the tolerance: non-symmetric weights stop on the stationarity of their least-squares problem)\n";
+  out << "Res (paper):     " << r.residual << "\n"
       << "max tangential:  " << r.max_tangential_residual << "\n"
       << "flipped faces:   " << r.flipped_faces << " (exact orientation test)\n"
       << std::setprecision(12)

@@ -200,7 +200,7 @@ python3 - "$scratch/good.json" "$scratch/bad.json" "$scratch/json.off" <<'JSON_C
 import json, math, os, sys
 keys = {"format", "input", "output", "status", "success", "skipped", "message", "vertices", "faces", "weights", "criterion", "tolerance",
         "max_imbalance", "imbalance_percentile_99", "unbalanced_vertices", "vertices_at_rounding_floor",
-        "residual", "max_tangential_residual", "flipped_faces", "total_signed_area", "bijective",
+        "max_stationarity", "unstationary_vertices", "residual", "max_tangential_residual", "flipped_faces", "total_signed_area", "bijective",
         "initial_flipped_faces", "uniform_initial_guess_fallback", "admissible_weights", "raised_weights", "clamped_weights",
         "rejected_moves", "separator_size",
         "cut_loop_length", "levels", "stages", "written", "seconds"}
@@ -217,6 +217,7 @@ assert good["status"] == "OK" and good["success"] is True and good["bijective"] 
 assert good["vertices"] == 1839 and good["faces"] == 3674, good
 assert good["flipped_faces"] == 0 and good["criterion"] == "imbalance" and good["tolerance"] == 1e-6, good
 assert 0 <= good["max_imbalance"] and good["unbalanced_vertices"] == 0, good
+assert good["max_stationarity"] is None and good["unstationary_vertices"] is None, good  # uniform weights: symmetric
 assert good["imbalance_percentile_99"] <= good["max_imbalance"], good
 assert abs(good["total_signed_area"] - 4 * math.pi) < 1e-6, good
 assert good["output"] == sys.argv[3] and os.path.exists(good["output"]), good

@@ -104,6 +104,8 @@ py::dict result_dict(const SP::Result& r, const std::string& weights, const std:
   d["max_imbalance"] = number(r.max_imbalance);
   d["imbalance_percentile_99"] = number(r.imbalance_percentile_99);
   d["unbalanced_vertices"] = r.unbalanced_vertices;
+  d["max_stationarity"] = number(r.max_stationarity);
+  d["unstationary_vertices"] = r.unstationary_vertices;
   d["vertices_at_rounding_floor"] = r.vertices_at_rounding_floor;
   d["residual"] = number(r.residual);
   d["max_tangential_residual"] = number(r.max_tangential_residual);

@@ -40,6 +40,8 @@ enum class Convergence_test {
   /// \f$ e_i = |t_i| / \sum_j |w_{ij}| \, |x_j - x_i| \f$, with \f$ t_i \f$ the tangential part of
   /// \f$ \sum_j w_{ij} (x_j - x_i) \f$ (weights normalized to sum to one), is at most the tolerance at every vertex,
   /// or at most the vertex's rounding floor where that is larger (see `Result::vertices_at_rounding_floor`).
+  /// For non-symmetric weights (mean value), whose equations generally have no exact solution, the stationarity of
+  /// their least-squares problem instead (`Result::max_stationarity`, see the manual).
   IMBALANCE,
   /// The paper's test: `Res < tolerance`. `Res` carries a factor 1/sqrt(n) against the root mean square of the
   /// per-vertex residuals, so on large meshes it passes while vertices are still far from balanced; kept to

@@ -291,9 +291,8 @@ private:
     for(double w : system_.weights) positive_weights = positive_weights && w > 0.;
     inscribability_ = check_inscribability(system_);
     no_balanced_solution_ = positive_weights && inscribability_.proven_not_inscribable;
-    // Non-symmetric weights (mean value) have no exact solution in general: the imbalance cannot reach the tolerance.
-    // Until the stationarity test of their least-squares problem exists, they stop on the paper's Res, and say so.
-    if(!system_.symmetric) iteration_options_.convergence_test = Convergence_test::PAPER_RESIDUAL;
+    // Non-symmetric weights (mean value) have no exact solution in general: with the imbalance test their iterations
+    // stop on the stationarity of the least-squares problem instead (summarize_stationarity).
     if(no_balanced_solution_) {
       iteration_options_.max_gauss_seidel_sweeps = start.flipped_faces == 0 ? 0 : std::min<std::size_t>(iteration_options_.max_gauss_seidel_sweeps, 100);
       iteration_options_.max_newton_sweeps = start.flipped_faces == 0 ? 0 : std::min<std::size_t>(iteration_options_.max_newton_sweeps, 100);
@@ -385,15 +384,25 @@ private:
     result_.vertices_at_rounding_floor = imbalance.vertices_at_rounding_floor;
     result_.unbalanced_vertices = imbalance.unbalanced_vertices;
     result_.convergence_test = iteration_options_.convergence_test;
+    Imbalance_summary stationarity;
+    if(!system_.symmetric) {
+      stationarity = summarize_stationarity(system_, x, options_.iterations.tolerance);
+      result_.max_stationarity = stationarity.max;
+      result_.unstationary_vertices = stationarity.unbalanced_vertices;
+    }
     const bool converged = iteration_options_.convergence_test == Convergence_test::PAPER_RESIDUAL
                                ? result_.residual < options_.iterations.tolerance
-                               : imbalance.balanced();
+                               : (system_.symmetric ? imbalance : stationarity).balanced();
     result_.status = !converged ? Error_code::NOT_CONVERGED : (certificate.bijective ? Error_code::OK : Error_code::NOT_BIJECTIVE);
     if(cancelled_) result_.status = Error_code::CANCELLED;
     if(no_balanced_solution_) result_.status = Error_code::NO_BALANCED_SOLUTION;
     result_.message = get_error_message(result_.status);
-    if(iteration_options_.convergence_test != options_.iterations.convergence_test)
-      result_.message += " [non-symmetric weights: stopped on the paper's Res, their imbalance cannot reach the tolerance]";
+    if(!system_.symmetric && iteration_options_.convergence_test == Convergence_test::IMBALANCE) {
+      std::ostringstream note;
+      note << " [non-symmetric weights: the test is the stationarity of their least-squares problem, max "
+           << result_.max_stationarity << "; their imbalance cannot reach the tolerance]";
+      result_.message += note.str();
+    }
     if(no_balanced_solution_) {
       std::ostringstream details;
       details << " (proof: " << inscribability_.independent_set_size << " of the " << system_.number_of_vertices

@@ -346,6 +346,33 @@ struct Imbalance_summary {
   bool balanced() const { return unbalanced_vertices == 0; }
 };
 
+// Builds an Imbalance_summary from per-vertex values, each tested against max(tolerance, its rounding floor).
+class Imbalance_accumulator {
+public:
+  explicit Imbalance_accumulator(double tolerance) : tolerance_(tolerance) {}
+  void add(double value, double rounding_floor)
+  {
+    ++count_;
+    sum_of_squares_ += value * value;
+    const double allowed = std::max(tolerance_, rounding_floor);
+    summary_.max = std::max(summary_.max, value);
+    summary_.worst_ratio = std::max(summary_.worst_ratio, allowed > 0. ? value / allowed : (value > 0. ? HUGE_VAL : 0.));
+    summary_.unbalanced_vertices += !(value <= allowed);
+    summary_.vertices_at_rounding_floor += rounding_floor > tolerance_;
+  }
+  Imbalance_summary summary() const
+  {
+    Imbalance_summary result = summary_;
+    result.rms = std::sqrt(sum_of_squares_ / static_cast<double>(std::max<std::size_t>(count_, 1)));
+    return result;
+  }
+private:
+  double tolerance_;
+  Imbalance_summary summary_;
+  double sum_of_squares_ = 0.;
+  std::size_t count_ = 0;
+};
+
 // The imbalance of every vertex against `tolerance`. `values` (optional) receives e_i; the percentile is computed
 // only then, so that the stopping tests of the iterations allocate nothing.
 inline Imbalance_summary summarize_imbalance(const Sphere_system& system, const std::vector<Vector3>& x, double tolerance,
@@ -353,19 +380,13 @@ inline Imbalance_summary summarize_imbalance(const Sphere_system& system, const 
 {
   const std::size_t n = system.number_of_vertices;
   if(values != nullptr) values->resize(n);
-  Imbalance_summary summary;
-  double sum_of_squares = 0.;
+  Imbalance_accumulator accumulator(tolerance);
   for(std::size_t i = 0; i < n; ++i) {
     const Vertex_imbalance v = vertex_imbalance(system, x, i);
     if(values != nullptr) (*values)[i] = v.imbalance;
-    sum_of_squares += v.imbalance * v.imbalance;
-    const double allowed = std::max(tolerance, v.rounding_floor);
-    summary.max = std::max(summary.max, v.imbalance);
-    summary.worst_ratio = std::max(summary.worst_ratio, allowed > 0. ? v.imbalance / allowed : (v.imbalance > 0. ? HUGE_VAL : 0.));
-    summary.unbalanced_vertices += !(v.imbalance <= allowed);
-    summary.vertices_at_rounding_floor += v.rounding_floor > tolerance;
+    accumulator.add(v.imbalance, v.rounding_floor);
   }
-  summary.rms = std::sqrt(sum_of_squares / static_cast<double>(std::max<std::size_t>(n, 1)));
+  Imbalance_summary summary = accumulator.summary();
   if(n > 0 && values != nullptr) {
     std::vector<double> sorted(*values);
     const std::size_t rank = std::min(n - 1, static_cast<std::size_t>(std::ceil(0.99 * static_cast<double>(n))) - 1);
@@ -375,30 +396,85 @@ inline Imbalance_summary summarize_imbalance(const Sphere_system& system, const 
   return summary;
 }
 
+// The stationarity of the least-squares problem of non-symmetric weights (mean value), whose balance equations
+// generally have no exact solution: the 2n tangential equations F_i = 0 (F_i the tangential part of
+// sum_j w_ij (x_j - x_i), normalized weights) are 3 more than the unknowns modulo rotations once the three torque
+// identities of symmetric weights fail. The map then minimizes Phi = 1/2 sum_i |F_i|^2, whose gradient at vertex k is
+//   g_k = -alpha_k F_k + P_k sum_{j in N(k)} w_jk F_j,   alpha_k = sum_j w_kj x_k . x_j,   P_k = I - x_k x_k^T
+// (J_ik = w_ik P_i on the tangent plane of k, J_kk = -alpha_k I: the Jacobian of tangent_newton_system.h). In the
+// scale of the imbalance, sigma_k = |g_k| / L_k with L_k = |alpha_k| l_k + sum_j |w_jk| l_j and l_i = sum_j |w_ij|
+// |x_j - x_i|: the size g_k would have if every F_i of its terms were as large as its own neighbourhood. Balanced maps
+// have sigma = 0; for symmetric weights sigma is not needed (F = 0 is reachable). Its rounding floor is the
+// imbalance's, carried through the same terms.
+inline Imbalance_summary summarize_stationarity(const Sphere_system& system, const std::vector<Vector3>& x, double tolerance)
+{
+  const std::size_t n = system.number_of_vertices;
+  std::vector<Vector3> force(n);
+  std::vector<double> alpha(n), scale(n), magnitude(n);
+  for(std::size_t i = 0; i < n; ++i) {
+    Vector3 d;
+    double a = 0., l = 0., m = 0.;
+    for(std::size_t k = system.offsets[i]; k < system.offsets[i + 1]; ++k) {
+      const Vector3 e = x[static_cast<std::size_t>(system.neighbors[k])] - x[i];
+      const double w = system.weights[k];
+      d += w * e;
+      a += w * (1. - 0.5 * squared_length(e));
+      l += std::abs(w) * length(e);
+      m += std::abs(w);
+    }
+    force[i] = tangential_part(x[i], d);
+    alpha[i] = a;
+    scale[i] = l;
+    magnitude[i] = m;
+  }
+  constexpr double half_ulp = 1.1102230246251565e-16;  // 2^-53
+  Imbalance_accumulator accumulator(tolerance);
+  for(std::size_t k = 0; k < n; ++k) {
+    Vector3 pull;
+    double size = std::abs(alpha[k]) * scale[k], noise = std::abs(alpha[k]) * magnitude[k];
+    for(std::size_t e = system.offsets[k]; e < system.offsets[k + 1]; ++e) {
+      const std::size_t j = static_cast<std::size_t>(system.neighbors[e]);
+      const double w = system.weights[system.reverse[e]];  // w_jk
+      pull += w * force[j];
+      size += std::abs(w) * scale[j];
+      noise += std::abs(w) * magnitude[j];
+    }
+    const double gradient = length(tangential_part(x[k], pull) - alpha[k] * force[k]);
+    double sigma = size > 0. ? gradient / size : (gradient > 0. ? HUGE_VAL : 0.);
+    if(!(sigma == sigma)) sigma = HUGE_VAL;
+    const double floor = size > 0. ? imbalance_rounding_factor * 2. * std::sqrt(3.) * half_ulp * noise / size : HUGE_VAL;
+    accumulator.add(sigma, floor);
+  }
+  return accumulator.summary();
+}
+
 // What the iterations watch, from one pass over the vertices: the paper's Res and the imbalances.
 struct Map_measure {
   double residual = 0.;         // the paper's Res (compute_residuals)
   Imbalance_summary imbalance;  // against the tolerance of the convergence test, with the root mean square
+  bool least_squares = false;   // non-symmetric weights: the test is the stationarity below, not the imbalance
+  Imbalance_summary stationarity;  // summarize_stationarity (non-symmetric weights only)
+  // What the imbalance test bounds: the imbalances, or the stationarity of the least-squares problem.
+  const Imbalance_summary& tested() const { return least_squares ? stationarity : imbalance; }
 };
 
 inline Map_measure measure_map(const Sphere_system& system, const std::vector<Vector3>& x, double tolerance)
 {
   const std::size_t n = system.number_of_vertices;
   Map_measure measure;
-  Imbalance_summary& summary = measure.imbalance;
-  double sum_of_squares = 0., squared_residuals = 0.;
+  Imbalance_accumulator accumulator(tolerance);
+  double squared_residuals = 0.;
   for(std::size_t i = 0; i < n; ++i) {
     const Vertex_imbalance v = vertex_imbalance(system, x, i);
     squared_residuals += v.squared_residual;
-    sum_of_squares += v.imbalance * v.imbalance;
-    const double allowed = std::max(tolerance, v.rounding_floor);
-    summary.max = std::max(summary.max, v.imbalance);
-    summary.worst_ratio = std::max(summary.worst_ratio, allowed > 0. ? v.imbalance / allowed : (v.imbalance > 0. ? HUGE_VAL : 0.));
-    summary.unbalanced_vertices += !(v.imbalance <= allowed);
-    summary.vertices_at_rounding_floor += v.rounding_floor > tolerance;
+    accumulator.add(v.imbalance, v.rounding_floor);
   }
-  summary.rms = std::sqrt(sum_of_squares / static_cast<double>(std::max<std::size_t>(n, 1)));
+  measure.imbalance = accumulator.summary();
   measure.residual = std::sqrt(squared_residuals) / static_cast<double>(std::max<std::size_t>(n, 1));
+  if(!system.symmetric) {
+    measure.least_squares = true;
+    measure.stationarity = summarize_stationarity(system, x, tolerance);
+  }
   return measure;
 }
 

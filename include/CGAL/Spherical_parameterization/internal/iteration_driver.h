@@ -63,19 +63,20 @@ inline bool past_time_budget(const Iteration_options& options, const Stopwatch& 
 }
 
 // The stopping test of every solver: no non-positive face, and every vertex balanced in its own scale (or the
-// paper's Res below the tolerance, when that test was chosen).
+// paper's Res below the tolerance, when that test was chosen). For non-symmetric weights, whose equations generally
+// have no exact solution, the imbalance test bounds the stationarity of their least-squares problem instead.
 inline bool has_converged(const Map_measure& measure, std::size_t invalid_faces, const Iteration_options& options)
 {
   if(invalid_faces != 0) return false;
   if(options.convergence_test == Convergence_test::PAPER_RESIDUAL) return measure.residual < options.tolerance;
-  return measure.imbalance.balanced();
+  return measure.tested().balanced();
 }
 
 // What the stagnation rules watch: the quantity the convergence test bounds (the worst imbalance over its allowed
 // value, or Res). Res alone keeps falling on a map that drifts towards collapse while no vertex gets balanced.
 inline double convergence_measure(const Map_measure& measure, const Iteration_options& options)
 {
-  return options.convergence_test == Convergence_test::PAPER_RESIDUAL ? measure.residual : measure.imbalance.worst_ratio;
+  return options.convergence_test == Convergence_test::PAPER_RESIDUAL ? measure.residual : measure.tested().worst_ratio;
 }
 
 // Backtracking along a step: t = 1, 1/2, 1/4, ... while t > min_step. `admissible(t)` builds the trial point at t and
