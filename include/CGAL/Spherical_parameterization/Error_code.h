@@ -12,7 +12,7 @@ enum class Error_code {
   OK = 0,                    ///< Converged: `Res < tolerance` and certified bijective.
   EMPTY_MESH,                ///< The mesh has no face.
   NOT_TRIANGLE_MESH,         ///< A face is not a triangle.
-  DEGENERATE_FACE,           ///< A face uses the same vertex twice.
+  DEGENERATE_FACE,           ///< A face uses the same vertex twice, or a vertex index out of range.
   NON_FINITE_COORDINATES,    ///< A vertex coordinate is NaN or infinite.
   ISOLATED_VERTEX,           ///< A vertex belongs to no face.
   HAS_BORDER,                ///< The mesh is open (has boundary loops).
@@ -25,7 +25,8 @@ enum class Error_code {
   PARTITION_FAILED,          ///< The mesh could not be split into two disks (stage 1).
   DISK_EMBEDDING_FAILED,     ///< The planar disk embedding of a half failed (stage 1).
   NOT_CONVERGED,             ///< The iteration caps or the time budget were reached before `Res < tolerance`.
-  NOT_BIJECTIVE,             ///< `Res < tolerance` but some spherical triangles are not positively oriented.
+  NOT_BIJECTIVE,             ///< The convergence test holds but the map is not bijective: some spherical triangles are not
+                             ///< positively oriented, or, with every one positive, the map does not have degree 1.
   NO_BALANCED_SOLUTION,      ///< The connectivity is not inscribable: no bijective solution exists for positive weights.
   CANCELLED                  ///< The `progress_callback` asked to stop.
 };
@@ -38,7 +39,7 @@ inline const char* get_error_message(Error_code code)
     case Error_code::OK: return "Success: converged and certified bijective";
     case Error_code::EMPTY_MESH: return "The mesh has no face";
     case Error_code::NOT_TRIANGLE_MESH: return "The mesh has a face that is not a triangle";
-    case Error_code::DEGENERATE_FACE: return "A face uses the same vertex more than once";
+    case Error_code::DEGENERATE_FACE: return "A face uses the same vertex more than once, or a vertex that does not exist";
     case Error_code::NON_FINITE_COORDINATES: return "A vertex has a NaN or infinite coordinate";
     case Error_code::ISOLATED_VERTEX: return "A vertex belongs to no face";
     case Error_code::HAS_BORDER: return "The mesh is not closed: it has boundary loops";
@@ -51,7 +52,7 @@ inline const char* get_error_message(Error_code code)
     case Error_code::PARTITION_FAILED: return "The mesh could not be split into two topological disks";
     case Error_code::DISK_EMBEDDING_FAILED: return "The planar embedding of a half of the mesh failed";
     case Error_code::NOT_CONVERGED: return "Not converged within the iteration caps or the time budget";
-    case Error_code::NOT_BIJECTIVE: return "The residual is below the tolerance but the map is not bijective";
+    case Error_code::NOT_BIJECTIVE: return "The map converged but is not bijective (a triangle not positively oriented, or a degree other than 1)";
     case Error_code::NO_BALANCED_SOLUTION:
       return "The connectivity is not inscribable: the balance equations have no bijective solution for positive weights";
     case Error_code::CANCELLED: return "Cancelled by the progress callback";

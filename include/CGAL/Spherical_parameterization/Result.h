@@ -16,7 +16,10 @@ namespace Spherical_parameterization {
 /// \ingroup PkgSphericalParameterizationRef
 /// Figures of one stage of the method.
 struct Stage_statistics {
-  std::size_t iterations = 0;  ///< Sweeps over the vertices (stage 1: linear solves).
+  /// Sweeps over the vertices; stage 1: the pairs of disks embedded (1, or more when the disk solver failed and
+  /// Eigen's sparse LU was tried, or when the weights folded the disks and Tutte's were tried; 0 with the multilevel
+  /// start, whose levels are in `Result::levels`).
+  std::size_t iterations = 0;
   double seconds = 0.;         ///< Wall-clock time of the stage.
   double residual = -1.;       ///< The paper's `Res` at the end of the stage (-1 when not computed).
   std::size_t linear_iterations = 0; ///< Stage 3: MINRES iterations of Newton's iterative linear solves (0 when

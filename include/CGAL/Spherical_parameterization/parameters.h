@@ -50,8 +50,9 @@ enum class Convergence_test {
 };
 
 /// \ingroup PkgSphericalParameterizationRef
-/// What the `progress_callback` named parameter receives, at the end of every stage and after every iteration (and,
-/// inside an iteration that lasts, the last report again with its time updated, at most every half second).
+/// What the `progress_callback` named parameter receives: once after stage 1 (the two-disk initial guess; with the
+/// multilevel start, after the coarsest level's), then after every iteration of stages 2 and 3 (and, inside an
+/// iteration that lasts, the last report again with its time updated, at most every half second).
 struct Progress {
   const char* stage = "";          ///< "initial guess", "gauss-seidel", "global newton" or "local newton".
   std::size_t iteration = 0;       ///< Iterations of that stage so far (0 for the initial guess).
@@ -135,8 +136,8 @@ CGAL_SPHERICAL_PARAMETERIZATION_NAMED_PARAMETER(multilevel)
 /// Seed of METIS' randomized separator (default 0): the same seed gives bitwise identical output.
 CGAL_SPHERICAL_PARAMETERIZATION_NAMED_PARAMETER(metis_seed)
 
-/// A callable `bool(const Progress&)`, called at the end of every stage and after every iteration; returning
-/// `false` cancels the run, which then ends with `Error_code::CANCELLED` and the current (best) iterate.
+/// A callable `bool(const Progress&)`, called after stage 1 and after every iteration (see `Progress`); returning
+/// `false` cancels the run, which then ends with `Error_code::CANCELLED` and the iterate reached (in stage 3 the best one).
 CGAL_SPHERICAL_PARAMETERIZATION_NAMED_PARAMETER(progress_callback)
 
 #undef CGAL_SPHERICAL_PARAMETERIZATION_NAMED_PARAMETER

@@ -115,7 +115,7 @@ using Sparse_LU_disk_solver_traits = internal::Sparse_LU_solver_traits;
 ///     \cgalParamType{a model of `SphericalParameterizationDiskSolverTraits`}
 ///     \cgalParamDefault{`AMG_solver_traits` (`Default_disk_solver_traits`)} \cgalParamNEnd
 ///   \cgalParamNBegin{progress_callback} \cgalParamDescription{called after stage 1 and after every iteration;
-///     returning `false` cancels (status `Error_code::CANCELLED`, the current iterate is written)}
+///     returning `false` cancels (status `Error_code::CANCELLED`, the iterate reached is written: in stage 3 the best one)}
 ///     \cgalParamType{a model of `SphericalParameterizationProgressCallback`}
 ///     \cgalParamDefault{none} \cgalParamNEnd
 ///   \cgalParamNBegin{verbose} \cgalParamDescription{print the figures of each stage to `std::cerr`, and the progress
@@ -184,7 +184,7 @@ Result spherical_parameterize(const TriangleMesh& tm, VertexSphereMap vsm,
   options.iterations.max_seconds = choose_parameter(get_parameter(np, internal_np::max_seconds), -1.);
   options.iterations.preserve_bijectivity = choose_parameter(get_parameter(np, internal_np::preserve_bijectivity), true);
   options.multilevel = choose_parameter(get_parameter(np, internal_np::multilevel), true);
-  // Progress: the user's callback sees every stage end and every iteration; verbose prints at most once a second.
+  // Progress: the user's callback sees the end of stage 1 and every iteration; verbose prints at most once a second.
   std::function<bool(const Progress&)> user_callback;
   if constexpr(!is_default_parameter<NamedParameters, internal_np::progress_callback_t>::value)
     user_callback = get_parameter(np, internal_np::progress_callback);

@@ -240,8 +240,11 @@ private:
     }
     result_.separator_size = partition.separator_size;
     result_.cut_loop_length = partition.loop.size();
+    // Stage 1's iterations count the pairs of disks embedded: one, or more when a solver or the weights fell back.
+    result_.initial_guess.iterations = 1;
     bool embedded = initial_sphere(mesh_, system_, partition, options_.weighting, solver_, x, options_.parallel);
     if(!embedded) {
+      ++result_.initial_guess.iterations;
       // An iterative solver can give up where a direct one does not: try Eigen's sparse LU before failing.
       embedded = initial_sphere(mesh_, system_, partition, options_.weighting, Sparse_LU_solver_traits(), x, options_.parallel);
       if(options_.verbose && embedded) std::cerr << "stage 1: the disk solver failed; Eigen's sparse LU was used\n";
@@ -250,6 +253,7 @@ private:
     if(options_.weighting != Weighting::UNIFORM && (!embedded || start.flipped_faces > 0)) {
       // Weights that may be negative or non-symmetric can fold the disks: Tutte's disks cannot.
       std::vector<Vector3> uniform_start;
+      ++result_.initial_guess.iterations;
       if(initial_sphere(mesh_, system_, partition, Weighting::UNIFORM, solver_, uniform_start, options_.parallel)) {
         const Sphere_certificate uniform_certificate = certify(system_.triangles, uniform_start);
         if(!embedded || uniform_certificate.flipped_faces < start.flipped_faces) {
@@ -266,7 +270,6 @@ private:
       return false;
     }
     result_.initial_flipped_faces = start.flipped_faces;
-    result_.initial_guess.iterations = 2;
     result_.initial_guess.residual = compute_residuals(system_, x).paper;
     const double initial_imbalance = summarize_imbalance(system_, x, options_.iterations.tolerance).max;
     result_.initial_guess.seconds = stage.seconds();
