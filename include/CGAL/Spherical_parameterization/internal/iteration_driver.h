@@ -183,7 +183,7 @@ public:
     return true;
   }
 
-  // Puts the best iterate back (keep_best_iterate()), or `fallback` when given.
+  // Puts the best iterate back (after keep_best_iterate()), or the given positions.
   void restore_best() { if(keep_best_) state_.assign(best_); }
   void restore(const std::vector<Vector3>& positions) { state_.assign(positions); }
 
@@ -196,7 +196,6 @@ public:
   }
   Iteration_report& report() { return report_; }
   std::size_t iterations() const { return report_.sweeps; }
-  Sphere_state& state() { return state_; }
 
 private:
   Sphere_state& state_;
