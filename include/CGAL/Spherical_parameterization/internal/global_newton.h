@@ -2,7 +2,8 @@
 //
 // global_newton() first runs the Moebius-aware Newton of mobius_newton.h (symmetric weights), which converges
 // in a few steps on most meshes. Where its steps keep being cut short, weights other than Tutte's are reached by
-// continuation from Tutte's (weight_continuation.h). Where that fails too (non-symmetric weights, meshes whose
+// continuation from Tutte's (weight_continuation.h), then by interior-point iterations from where the path ends
+// (constrained_balance.h). Where that fails too (non-symmetric weights, meshes whose
 // thin parts must shrink by orders of magnitude, weights whose solutions degenerate), the cautious Newton below
 // takes over from the best iterate:
 // unknowns d_i in the tangent planes, equations F_i = T_i^T sum_j W_ij x_j, the Jacobian
@@ -19,6 +20,7 @@
 #include <CGAL/Spherical_parameterization/internal/mobius_newton.h>
 #include <CGAL/Spherical_parameterization/internal/tangent_newton_system.h>
 #include <CGAL/Spherical_parameterization/internal/weight_continuation.h>
+#include <CGAL/Spherical_parameterization/internal/constrained_balance.h>
 
 #include <Eigen/Sparse>
 #include <Eigen/SparseLU>
@@ -314,14 +316,22 @@ inline Iteration_report global_newton(Sphere_state& state, const Iteration_optio
     state.assign(state.positions());
     report.sweeps += continuation.newton_steps;
     report.continuation_parameter = continuation.last_parameter;
-    if(continuation.reached) {
+    // Whether the map reached by the continuation or the interior-point iterations passes the convergence test.
+    auto passes_the_test = [&]() {
       const Map_measure measure = measure_map(system, state.positions(), options.tolerance);
       report.residual = measure.residual;
       report.converged = has_converged(measure, state.invalid_faces(), options);
       report.stagnated = false;
-      if(report.converged) return report;
-    }
+      return report.converged;
+    };
+    if(continuation.reached && passes_the_test()) return report;
     if(continuation.cancelled) { report.cancelled = true; return report; }
+    // Where the path ends, the interior-point iterations (constrained_balance.h) continue towards the target
+    // weights' balanced map, every iterate bijective: on homer the path ends at 55% and they reach it in 16 steps.
+    const Constrained_balance_report barrier = constrained_balance(state, options, clock);
+    report.sweeps += barrier.newton_steps;
+    if(barrier.reached && passes_the_test()) return report;
+    if(barrier.cancelled) { report.cancelled = true; return report; }
     state.assign(start);
   }
   Iteration_options remaining = options;

@@ -70,6 +70,16 @@ struct Solver_tuning {
   double marquardt_max = 1e6;
   int marquardt_attempts = 6;
   double cautious_damping = 1e-10;  // relative diagonal shift against the rotations (symmetric weights)
+
+  // --- The interior-point iterations (constrained_balance.h) where the weight continuation ends ---
+  // The first barrier parameter: the path's last map is balanced for other weights, and its imbalances under the
+  // target weights are of order 0.1 to 1 (homer, cow, triceratops), so a barrier force of 1% of the spring scale
+  // leaves them to Newton. Each phase divides it by barrier_reduction, down to a hundredth of the tolerance.
+  double barrier_first_parameter = 1e-2;
+  double barrier_reduction = 10.;
+  // A phase ends after this many steps in a row cut below a quarter (the constrained case: cow's steps, cut to
+  // 1e-7 and below, ran 121 times without progress).
+  std::size_t barrier_patience = 5;
 };
 
 } // namespace internal
