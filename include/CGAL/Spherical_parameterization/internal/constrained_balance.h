@@ -56,7 +56,9 @@ struct Constrained_balance_report {
 
 class Constrained_balance {
 public:
-  explicit Constrained_balance(const Sphere_system& system) : system_(system) {}
+  // `rotation_shift`: the relative diagonal shift against the rotations, an exact null space of the Hessian.
+  explicit Constrained_balance(const Sphere_system& system, double rotation_shift = Solver_tuning().cautious_damping)
+    : system_(system), rotation_shift_(rotation_shift) {}
 
   // det(a, b, c) with differences, so that tiny triangles keep their digits.
   static double determinant(const Vector3& a, const Vector3& b, const Vector3& c)
@@ -220,7 +222,7 @@ public:
       }
     }
     for(std::size_t i = 0; i < n; ++i) largest_diagonal = std::max(largest_diagonal, std::abs(diagonal[i]));
-    const double shift = 1e-10 * largest_diagonal;
+    const double shift = rotation_shift_ * largest_diagonal;
     for(std::size_t i = 0; i < n; ++i)
       for(int r = 0; r < 2; ++r) entries.emplace_back(static_cast<int>(2 * i + r), static_cast<int>(2 * i + r), diagonal[i] + shift);
     Eigen::SparseMatrix<double> hessian(static_cast<Eigen::Index>(2 * n), static_cast<Eigen::Index>(2 * n));
@@ -266,6 +268,7 @@ private:
   }
 
   const Sphere_system& system_;
+  double rotation_shift_;
   std::vector<double> scale_;
   std::vector<Vector3> t1_, t2_;
   bool analyzed_ = false;
@@ -273,9 +276,10 @@ private:
 };
 
 // The interior-point iterations from a map with every face positive (state.invalid_faces() == 0), for symmetric
-// weights. Each phase ends when max_i |grad_i Phi_mu| / l_i <= max(tolerance, 10 mu); the last one (mu = tolerance / 100)
-// at the tolerance. A phase also ends when tuning.barrier_patience steps in a row had to be cut below a quarter or when no step
-// lowers the merit; `reached` says whether the last one met the tolerance. Every iterate is bijective.
+// weights. Each phase ends when max_i |grad_i Phi_mu| / l_i <= max(tolerance, tuning.barrier_phase_factor * mu),
+// the last one (mu = tuning.barrier_final_fraction * tolerance) at the tolerance. A phase also ends when
+// tuning.barrier_patience steps in a row had to be cut below a quarter or when no step lowers the merit; `reached`
+// says whether the last one met the tolerance. Every iterate is bijective.
 inline Constrained_balance_report constrained_balance(Sphere_state& state, const Iteration_options& options, const Stopwatch& clock)
 {
   const Solver_tuning& tuning = options.tuning;
@@ -283,18 +287,18 @@ inline Constrained_balance_report constrained_balance(Sphere_state& state, const
   const Sphere_system& system = state.system();
   const std::size_t n = system.number_of_vertices;
   if(state.invalid_faces() != 0 || !system.symmetric) return report;
-  Constrained_balance solver(system);
+  Constrained_balance solver(system, tuning.cautious_damping);
   std::vector<Vector3>& x = state.positions();
   std::vector<Vector3> g, trial_g, step, trial(n);
   std::vector<double> l, trial_l;
   const double first_mu = tuning.barrier_first_parameter;
-  const double final_mu = std::min(first_mu, std::max(1e-2 * options.tolerance, 1e-12));
+  const double final_mu = std::min(first_mu, std::max(tuning.barrier_final_fraction * options.tolerance, 1e-12));
   std::size_t short_steps = 0;
   for(double mu = first_mu;; mu = std::max(mu / tuning.barrier_reduction, final_mu)) {
     report.mu = mu;
     solver.set_face_scales(x);
     const bool last = mu == final_mu;
-    const double phase_tolerance = last ? options.tolerance : std::max(options.tolerance, 10. * mu);
+    const double phase_tolerance = last ? options.tolerance : std::max(options.tolerance, tuning.barrier_phase_factor * mu);
     for(;;) {
       if(past_time_budget(options, clock)) { report.out_of_time = true; return report; }
       if(options.cancel_requested()) { report.cancelled = true; return report; }

@@ -80,6 +80,11 @@ struct Solver_tuning {
   // A phase ends after this many steps in a row cut below a quarter (the constrained case: cow's steps, cut to
   // 1e-7 and below, ran 121 times without progress).
   std::size_t barrier_patience = 5;
+  // A phase is solved until max_i |grad_i Phi_mu| / l_i <= barrier_phase_factor * mu (the barrier's own forces are up
+  // to mu l_i: tighter is wasted on a phase that is left anyway); the last phase, at mu = barrier_final_fraction times
+  // the tolerance (barrier forces far below it), to the tolerance.
+  double barrier_phase_factor = 10.;
+  double barrier_final_fraction = 1e-2;
 };
 
 } // namespace internal
