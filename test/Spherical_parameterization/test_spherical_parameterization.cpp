@@ -747,53 +747,53 @@ TEST(GlobalNewton, ContinuationFromTutteWeights)
 TEST(ConstrainedBalance, HessianMatchesFiniteDifferences)
 {
   for(const std::string name : {"sphere966.off", "triceratops.off"}) {
-  const SPI::Mesh_arrays arrays = arrays_of(read_mesh(cgal_data + "/" + name));
-  const SPI::Sphere_system system = system_of(arrays, SP::Weighting::COTANGENT);
-  std::vector<SPI::Vector3> x;
-  if(name == "sphere966.off") {
-    SPI::Vector3 centre;
-    for(const SPI::Vector3& p : arrays.points) centre += p * (1. / static_cast<double>(arrays.points.size()));
-    for(const SPI::Vector3& p : arrays.points) x.push_back((p - centre) * (1. / SPI::length(p - centre)));
-  } else {
-    x = initial_sphere_of(arrays, system);
-  }
-  ASSERT_EQ(SPI::certify(system.triangles, x).flipped_faces, 0u) << name;
-  SPI::Constrained_balance balance(system);
-  balance.set_face_scales(x);
-  const std::size_t n = x.size();
-  for(double mu : {0., 1e-2, 1.}) {
-    std::vector<SPI::Vector3> g, g_plus, g_minus;
-    std::vector<double> l;
-    ASSERT_TRUE(balance.gradient(x, mu, g, l));
-    const Eigen::SparseMatrix<double> hessian = balance.assemble_hessian(x, mu);
-    const std::vector<SPI::Vector3>& t1 = balance.frame1();
-    const std::vector<SPI::Vector3>& t2 = balance.frame2();
-    std::mt19937 random(7);
-    std::normal_distribution<double> normal;
-    Eigen::VectorXd d(static_cast<Eigen::Index>(2 * n));
-    for(Eigen::Index k = 0; k < d.size(); ++k) d[k] = normal(random);
-    const Eigen::VectorXd product = hessian * d;
-    const double h = 1e-11;  // below the smallest triangles of the guess, whose barrier terms are the least linear
-    std::vector<SPI::Vector3> plus(n), minus(n);
-    for(std::size_t i = 0; i < n; ++i) {
-      const SPI::Vector3 v = d[static_cast<Eigen::Index>(2 * i)] * t1[i] + d[static_cast<Eigen::Index>(2 * i + 1)] * t2[i];
-      const SPI::Vector3 p = x[i] + h * v, m = x[i] - h * v;
-      plus[i] = p * (1. / SPI::length(p));
-      minus[i] = m * (1. / SPI::length(m));
+    const SPI::Mesh_arrays arrays = arrays_of(read_mesh(cgal_data + "/" + name));
+    const SPI::Sphere_system system = system_of(arrays, SP::Weighting::COTANGENT);
+    std::vector<SPI::Vector3> x;
+    if(name == "sphere966.off") {
+      SPI::Vector3 centre;
+      for(const SPI::Vector3& p : arrays.points) centre += p * (1. / static_cast<double>(arrays.points.size()));
+      for(const SPI::Vector3& p : arrays.points) x.push_back((p - centre) * (1. / SPI::length(p - centre)));
+    } else {
+      x = initial_sphere_of(arrays, system);
     }
-    ASSERT_TRUE(balance.gradient(plus, mu, g_plus, l));
-    ASSERT_TRUE(balance.gradient(minus, mu, g_minus, l));
-    double error = 0., norm = 0.;
-    for(std::size_t i = 0; i < n; ++i) {
-      const SPI::Vector3 difference = (g_plus[i] - g_minus[i]) * (0.5 / h);
-      const double a = SPI::dot(t1[i], difference) - product[static_cast<Eigen::Index>(2 * i)];
-      const double b = SPI::dot(t2[i], difference) - product[static_cast<Eigen::Index>(2 * i + 1)];
-      error += a * a + b * b;
-      norm += product[static_cast<Eigen::Index>(2 * i)] * product[static_cast<Eigen::Index>(2 * i)] +
-              product[static_cast<Eigen::Index>(2 * i + 1)] * product[static_cast<Eigen::Index>(2 * i + 1)];
+    ASSERT_EQ(SPI::certify(system.triangles, x).flipped_faces, 0u) << name;
+    SPI::Constrained_balance balance(system);
+    balance.set_face_scales(x);
+    const std::size_t n = x.size();
+    for(double mu : {0., 1e-2, 1.}) {
+      std::vector<SPI::Vector3> g, g_plus, g_minus;
+      std::vector<double> l;
+      ASSERT_TRUE(balance.gradient(x, mu, g, l));
+      const Eigen::SparseMatrix<double> hessian = balance.assemble_hessian(x, mu);
+      const std::vector<SPI::Vector3>& t1 = balance.frame1();
+      const std::vector<SPI::Vector3>& t2 = balance.frame2();
+      std::mt19937 random(7);
+      std::normal_distribution<double> normal;
+      Eigen::VectorXd d(static_cast<Eigen::Index>(2 * n));
+      for(Eigen::Index k = 0; k < d.size(); ++k) d[k] = normal(random);
+      const Eigen::VectorXd product = hessian * d;
+      const double h = 1e-11;  // below the smallest triangles of the guess, whose barrier terms are the least linear
+      std::vector<SPI::Vector3> plus(n), minus(n);
+      for(std::size_t i = 0; i < n; ++i) {
+        const SPI::Vector3 v = d[static_cast<Eigen::Index>(2 * i)] * t1[i] + d[static_cast<Eigen::Index>(2 * i + 1)] * t2[i];
+        const SPI::Vector3 p = x[i] + h * v, m = x[i] - h * v;
+        plus[i] = p * (1. / SPI::length(p));
+        minus[i] = m * (1. / SPI::length(m));
+      }
+      ASSERT_TRUE(balance.gradient(plus, mu, g_plus, l));
+      ASSERT_TRUE(balance.gradient(minus, mu, g_minus, l));
+      double error = 0., norm = 0.;
+      for(std::size_t i = 0; i < n; ++i) {
+        const SPI::Vector3 difference = (g_plus[i] - g_minus[i]) * (0.5 / h);
+        const double a = SPI::dot(t1[i], difference) - product[static_cast<Eigen::Index>(2 * i)];
+        const double b = SPI::dot(t2[i], difference) - product[static_cast<Eigen::Index>(2 * i + 1)];
+        error += a * a + b * b;
+        norm += product[static_cast<Eigen::Index>(2 * i)] * product[static_cast<Eigen::Index>(2 * i)] +
+                product[static_cast<Eigen::Index>(2 * i + 1)] * product[static_cast<Eigen::Index>(2 * i + 1)];
+      }
+      EXPECT_LT(std::sqrt(error / norm), 1e-4) << name << ", mu " << mu;
     }
-    EXPECT_LT(std::sqrt(error / norm), 1e-4) << name << ", mu " << mu;
-  }
   }
 }
 

@@ -15,12 +15,12 @@
 // vertex's spring scale l_i = sum_j |w_ij| |x_j - x_i|, on every scale of the mesh (thin limbs whose triangles are
 // orders of magnitude smaller than the body's, slivers): with c_f from the edge lengths alone, the barrier's force
 // was 26,000 times the spring scale at triceratops' slivers and no step got anywhere. As mu -> 0 the barrier's
-// force vanishes except at the faces that hold the map back (Constrained_balance_report::holding_faces).
+// force vanishes except at the faces that hold the map back.
 //
 // Measured (CGAL's meshes, cotangent weights, from where the weight continuation ends): homer reaches its balanced
 // map in 16 steps (angle error 4.25 degrees). On triceratops and cow, whose cotangent balanced maps fold, the steps
 // are cut ever shorter by the triangles about to degenerate (a primal barrier's Newton model holds only close to
-// the central path): `reached` stays false and the caller goes on as before.
+// the central path): `reached` stays false, and global_newton.h goes on from the better of this map and its own.
 
 #ifndef CGAL_SPHERICAL_PARAMETERIZATION_INTERNAL_CONSTRAINED_BALANCE_H
 #define CGAL_SPHERICAL_PARAMETERIZATION_INTERNAL_CONSTRAINED_BALANCE_H
@@ -45,12 +45,8 @@ namespace Spherical_parameterization {
 namespace internal {
 
 struct Constrained_balance_report {
-  bool reached = false;             // the last phase's gradient met the tolerance
-  double mu = 0.;                   // the last barrier parameter
+  bool reached = false;  // the last phase's gradient met the tolerance
   std::size_t newton_steps = 0;
-  std::size_t holding_faces = 0;    // faces whose multiplier is not negligible at the end
-  double max_gradient = 0.;         // max_i |grad_i Phi_mu| / l_i at the end
-  bool out_of_time = false;
   bool cancelled = false;
 };
 
@@ -231,25 +227,6 @@ public:
     return hessian;
   }
 
-  // Faces whose barrier force at one of their vertices exceeds `tolerance` times the vertex's scale.
-  std::size_t holding_faces(const std::vector<Vector3>& x, double mu, const std::vector<double>& l, double tolerance) const
-  {
-    std::size_t count = 0;
-    for(std::size_t f = 0; f < system_.triangles.size(); ++f) {
-      const auto& t = system_.triangles[f];
-      const Vector3 p[3] = {x[static_cast<std::size_t>(t[0])], x[static_cast<std::size_t>(t[1])], x[static_cast<std::size_t>(t[2])]};
-      const double det = determinant(p[0], p[1], p[2]);
-      bool holds = false;
-      for(int k = 0; k < 3 && !holds; ++k) {
-        const std::size_t v = static_cast<std::size_t>(t[k]);
-        const double force = mu * scale_[f] / det * length(tangential_part(p[k], opposite_cross(p[k], p[(k + 1) % 3], p[(k + 2) % 3])));
-        holds = force > tolerance * l[v];
-      }
-      count += holds;
-    }
-    return count;
-  }
-
 private:
   // d det(p, q, r) / d p = q x r, written as (q - p) x (r - p) + p x (r - q) for tiny triangles' digits.
   static Vector3 opposite_cross(const Vector3& p, const Vector3& q, const Vector3& r)
@@ -294,19 +271,18 @@ inline Constrained_balance_report constrained_balance(Sphere_state& state, const
   const double first_mu = tuning.barrier_first_parameter;
   const double final_mu = std::min(first_mu, std::max(tuning.barrier_final_fraction * options.tolerance, 1e-12));
   std::size_t short_steps = 0;
-  for(double mu = first_mu;; mu = std::max(mu / tuning.barrier_reduction, final_mu)) {
-    report.mu = mu;
+  double mu = first_mu;
+  for(;; mu = std::max(mu / tuning.barrier_reduction, final_mu)) {
     solver.set_face_scales(x);
     const bool last = mu == final_mu;
     const double phase_tolerance = last ? options.tolerance : std::max(options.tolerance, tuning.barrier_phase_factor * mu);
+    solver.gradient(x, mu, g, l);
     for(;;) {
-      if(past_time_budget(options, clock)) { report.out_of_time = true; return report; }
+      if(past_time_budget(options, clock)) return report;
       if(options.cancel_requested()) { report.cancelled = true; return report; }
       if(report.newton_steps >= options.max_newton_sweeps) return report;
-      solver.gradient(x, mu, g, l);
       double max_g = 0., merit = 0.;
       Constrained_balance::scaled_norms(g, l, max_g, merit);
-      report.max_gradient = max_g;
       if(max_g <= phase_tolerance) break;
       if(!solver.newton_step(x, mu, g, step)) return report;
       // Rotations change nothing; the boost part, along the nearly singular directions, is applied as an exact
@@ -315,7 +291,7 @@ inline Constrained_balance_report constrained_balance(Sphere_state& state, const
       remove_rotation_and_boost(x, step, rotation, boost);
       double max_trial = 0., trial_merit = 0.;
       const double t = backtracking_line_search(
-          options.tuning.newton_min_step,
+          tuning.newton_min_step,
           [&](double s) {
             for(std::size_t i = 0; i < n; ++i) {
               const Vector3 y = x[i] + s * step[i];
@@ -331,19 +307,18 @@ inline Constrained_balance_report constrained_balance(Sphere_state& state, const
       // full steps from mu = 1e-3 on).
       if(t == 0.) break;
       state.assign(trial, true);
+      g.swap(trial_g);  // the line search computed the gradient at the accepted point
+      l.swap(trial_l);
       ++report.newton_steps;
       short_steps = t >= 0.25 ? 0 : short_steps + 1;
       if(short_steps >= tuning.barrier_patience) break;
     }
     if(last) break;
   }
-  solver.gradient(x, report.mu, g, l);
+  solver.gradient(x, mu, g, l);
   double max_g = 0., merit = 0.;
   Constrained_balance::scaled_norms(g, l, max_g, merit);
-  report.max_gradient = max_g;
-  if(!(max_g <= options.tolerance)) return report;
-  report.reached = true;
-  report.holding_faces = solver.holding_faces(x, report.mu, l, options.tolerance);
+  report.reached = max_g <= options.tolerance;
   return report;
 }
 
