@@ -386,6 +386,35 @@ TEST(Factor_and_solve, ReusesTheSetupAndSharesItWithCopies)
   EXPECT_LE(relative_residual(scaled, system.bu, Xu), 1e-10);
 }
 
+// The setup is kept while the matrix and the setup parameters (the hierarchy's, the symmetry test, the direct
+// solver thresholds) stay the same; a solve parameter does not count.
+TEST(Factor_and_solve, SetupParametersTriggerANewSetup)
+{
+  const Disk_system system = build_disk_system(read_mesh("c3d_fandisk.off"), Weighting::COTANGENT, false);
+  AMG_traits solver(amg_only());
+  double D = 0.;
+  ASSERT_TRUE(solver.factor(AMG_traits::Matrix(system.A), D));
+  solver.parameters().tolerance = 1e-8;
+  solver.parameters().max_iterations = 100;
+  ASSERT_TRUE(solver.factor(AMG_traits::Matrix(system.A), D));
+  EXPECT_EQ(solver.statistics().number_of_setups, 1u);
+
+  std::size_t setups = 1;
+  const auto expect_new_setup = [&](const char* what)
+  {
+    ASSERT_TRUE(solver.factor(AMG_traits::Matrix(system.A), D)) << what;
+    EXPECT_EQ(solver.statistics().number_of_setups, ++setups) << what;
+  };
+  solver.parameters().hierarchy.strength_threshold = 0.5;
+  expect_new_setup("strength_threshold");
+  solver.parameters().hierarchy.post_smoothing_sweeps = 2;
+  expect_new_setup("post_smoothing_sweeps");
+  solver.parameters().symmetry_tolerance = 1e-10;
+  expect_new_setup("symmetry_tolerance");
+  solver.parameters().direct_solver_threshold = 1;
+  expect_new_setup("direct_solver_threshold");
+}
+
 TEST(Direct_solver_threshold, SmallSystemsGoToTheDirectSolver)
 {
   const Mesh mesh = read_mesh("c3d_fandisk.off"); // 6467 interior vertices

@@ -7,20 +7,18 @@
 #include <CGAL/Eigen_vector.h>
 
 #include <CGAL/Spherical_parameterization/internal/AMG/Compressed_row_matrix.h>
+#include <CGAL/Spherical_parameterization/internal/AMG/Diagonal_row_elimination.h>
+#include <CGAL/Spherical_parameterization/internal/AMG/Direct_solver.h>
 #include <CGAL/Spherical_parameterization/internal/AMG/Krylov_solvers.h>
 #include <CGAL/Spherical_parameterization/internal/AMG/Ruge_stueben_hierarchy.h>
+#include <CGAL/Spherical_parameterization/internal/AMG/Setup_cache.h>
 
-#include <Eigen/SparseCholesky>
-#include <Eigen/SparseLU>
-
-#include <algorithm>
 #include <chrono>
 #include <climits>
 #include <cmath>
-#include <cstdint>
-#include <cstring>
 #include <limits>
 #include <memory>
+#include <utility>
 #include <vector>
 
 namespace CGAL {
@@ -82,20 +80,22 @@ public:
     GMRES               ///< restarted GMRES for non-symmetric systems; one V-cycle per iteration
   };
 
+  /// Setup parameters of the multigrid hierarchy, with these fields:
+  /// - `double strength_threshold = 0.25`: `j` strongly influences `i` if
+  ///   \f$ -a_{ij} \ge \theta \max_k(-a_{ik}) \f$ (\f$ |a_{ij}| \f$ in rows with positive off-diagonal entries);
+  /// - `int max_coarse_size = 200`: coarsening stops at this number of unknowns, solved directly;
+  /// - `int max_levels = 25`: maximal number of levels, the finest included;
+  /// - `int pre_smoothing_sweeps = 1`: forward Gauss-Seidel sweeps before the coarse-grid correction;
+  /// - `int post_smoothing_sweeps = 1`: backward Gauss-Seidel sweeps after the coarse-grid correction.
+  ///
+  /// It has `operator==`.
+  typedef internal::AMG::Hierarchy_parameters Hierarchy_parameters;
+
   /// Setup and solve parameters.
   struct Parameters
   {
-    /// `j` strongly influences `i` if \f$ -a_{ij} \ge \theta \max_k(-a_{ik}) \f$
-    /// (\f$ |a_{ij}| \f$ in rows with positive off-diagonal entries).
-    double strength_threshold = 0.25;
-    /// Forward Gauss-Seidel sweeps before the coarse-grid correction.
-    int pre_smoothing_sweeps = 1;
-    /// Backward Gauss-Seidel sweeps after the coarse-grid correction.
-    int post_smoothing_sweeps = 1;
-    /// Coarsening stops at this number of unknowns, solved directly.
-    int max_coarse_size = 200;
-    /// Maximal number of levels, the finest included.
-    int max_levels = 25;
+    /// Setup of the multigrid hierarchy (strength threshold, coarsening limits, smoothing sweeps).
+    Hierarchy_parameters hierarchy;
     /// Target relative residual \f$ \|B - AX\| / \|B\| \f$.
     double tolerance = 1e-10;
     /// Maximal number of Krylov iterations per solve.
@@ -200,55 +200,22 @@ private:
   typedef Eigen::SparseMatrix<double, Eigen::ColMajor, int> Eigen_matrix;
   typedef std::chrono::steady_clock Clock;
 
-  struct Fingerprint
-  {
-    std::size_t rows = 0, columns = 0, nonzeros = 0;
-    std::uint64_t hash = 0;
-    Parameters parameters; // the setup parameters among them
-
-    bool operator==(const Fingerprint& o) const
-    {
-      const Parameters& p = parameters;
-      const Parameters& q = o.parameters;
-      return rows == o.rows && columns == o.columns && nonzeros == o.nonzeros && hash == o.hash
-          && p.strength_threshold == q.strength_threshold && p.pre_smoothing_sweeps == q.pre_smoothing_sweeps
-          && p.post_smoothing_sweeps == q.post_smoothing_sweeps && p.max_coarse_size == q.max_coarse_size
-          && p.max_levels == q.max_levels && p.symmetry_tolerance == q.symmetry_tolerance
-          && p.direct_solver_threshold == q.direct_solver_threshold
-          && p.direct_solver_threshold_non_symmetric == q.direct_solver_threshold_non_symmetric;
-    }
-  };
-
   struct State
   {
-    bool has_setup = false;
-    bool setup_succeeded = false;
-    Fingerprint fingerprint;
-
-    // Elimination of the rows that hold only a diagonal entry.
-    std::size_t original_size = 0;
-    std::vector<Index> original_index;          // of each reduced unknown
-    std::vector<Index> eliminated_index;        // rows with only a diagonal entry
-    std::vector<double> eliminated_diagonal;
-    std::vector<double> row_sign;               // of each reduced row: -1 where the diagonal was negative
-    Compressed_row_matrix coupling;             // reduced rows x eliminated unknowns
-    bool identity_reduction = false;            // nothing eliminated or negated: solve in place in X
-
+    internal::AMG::Setup_cache cache;
+    internal::AMG::Diagonal_row_elimination elimination;
     bool symmetric = false;
     bool direct = false;
     Krylov_method krylov_method = Krylov_method::AUTOMATIC;
     internal::AMG::Ruge_stueben_hierarchy hierarchy;
-    Compressed_row_matrix direct_matrix;        // the reduced matrix when the direct solver is used
-    std::unique_ptr<Eigen::SimplicialLDLT<Eigen_matrix>> ldlt;
-    std::unique_ptr<Eigen::SparseLU<Eigen_matrix>> lu;
-
+    internal::AMG::Direct_solver direct_solver;
     internal::AMG::Krylov_workspace workspace;
-    std::vector<double> reduced_right_hand_side, reduced_solution, known_values, correction;
+    std::vector<double> reduced_right_hand_side, reduced_solution;
     Statistics statistics;
 
     const Compressed_row_matrix& reduced_matrix() const
     {
-      return direct ? direct_matrix : hierarchy.fine_matrix();
+      return direct ? direct_solver.matrix() : hierarchy.fine_matrix();
     }
   };
 
@@ -257,35 +224,15 @@ private:
     return std::chrono::duration<double>(Clock::now() - start).count();
   }
 
-  static std::uint64_t hash_words(std::uint64_t hash, const void* data, std::size_t bytes)
+  internal::AMG::Setup_key setup_key(const Eigen_matrix& E) const
   {
-    const unsigned char* p = static_cast<const unsigned char*>(data);
-    std::size_t i = 0;
-    for(; i + 8 <= bytes; i += 8)
-    {
-      std::uint64_t word;
-      std::memcpy(&word, p + i, 8);
-      hash = (hash ^ word) * 0x100000001b3ULL;
-      hash ^= hash >> 29;
-    }
-    for(; i < bytes; ++i)
-      hash = (hash ^ p[i]) * 0x100000001b3ULL;
-    return hash;
-  }
-
-  static Fingerprint fingerprint_of(const Eigen_matrix& E, const Parameters& parameters)
-  {
-    Fingerprint f;
-    f.rows = std::size_t(E.rows());
-    f.columns = std::size_t(E.cols());
-    f.nonzeros = std::size_t(E.nonZeros());
-    f.parameters = parameters;
-    std::uint64_t hash = 0xcbf29ce484222325ULL;
-    hash = hash_words(hash, E.outerIndexPtr(), sizeof(int) * (std::size_t(E.outerSize()) + 1));
-    hash = hash_words(hash, E.innerIndexPtr(), sizeof(int) * f.nonzeros);
-    hash = hash_words(hash, E.valuePtr(), sizeof(double) * f.nonzeros);
-    f.hash = hash;
-    return f;
+    internal::AMG::Setup_key key;
+    key.matrix = internal::AMG::fingerprint_of(E);
+    key.hierarchy = m_parameters.hierarchy;
+    key.symmetry_tolerance = m_parameters.symmetry_tolerance;
+    key.direct_solver_threshold = m_parameters.direct_solver_threshold;
+    key.direct_solver_threshold_non_symmetric = m_parameters.direct_solver_threshold_non_symmetric;
+    return key;
   }
 
   bool factor_if_changed(const Matrix& A)
@@ -299,122 +246,21 @@ private:
       compressed_copy.makeCompressed();
       E = &compressed_copy;
     }
-    const Fingerprint fingerprint = fingerprint_of(*E, m_parameters);
+    const internal::AMG::Setup_key key = setup_key(*E);
     State& state = *m_state;
-    if(state.has_setup && state.fingerprint == fingerprint)
-      return state.setup_succeeded;
+    if(state.cache.holds(key))
+      return state.cache.succeeded();
 
-    state.fingerprint = fingerprint;
-    state.has_setup = true;
-    state.setup_succeeded = false;
+    state.cache.start(key);
     const Clock::time_point start = Clock::now();
-    state.setup_succeeded = setup(*E, state);
+    state.cache.finish(setup(*E, state));
     state.statistics.setup_seconds = seconds_since(start);
     ++state.statistics.number_of_setups;
-    return state.setup_succeeded;
+    return state.cache.succeeded();
   }
 
-  // Splits the rows into eliminated ones (only a diagonal entry: the value is known) and the reduced system,
-  // read directly from Eigen's column-major storage; columns come out sorted.
-  static bool eliminate_diagonal_rows(const Eigen_matrix& E, State& state, Compressed_row_matrix& reduced)
-  {
-    const Index n = Index(E.rows());
-    const int* outer = E.outerIndexPtr();
-    const int* inner = E.innerIndexPtr();
-    const double* value = E.valuePtr();
-
-    std::vector<double> diagonal(n, 0.);
-    std::vector<char> has_off_diagonal(n, 0);
-    for(Index j = 0; j < n; ++j)
-      for(Index k = outer[j]; k < outer[j + 1]; ++k)
-      {
-        if(!std::isfinite(value[k]))
-          return false;
-        if(inner[k] == j)
-          diagonal[j] += value[k];
-        else if(value[k] != 0.)
-          has_off_diagonal[inner[k]] = 1;
-      }
-
-    std::vector<Index> reduced_index(n, -1), eliminated_ordinal(n, -1);
-    state.original_index.clear();
-    state.eliminated_index.clear();
-    state.eliminated_diagonal.clear();
-    state.row_sign.clear();
-    for(Index i = 0; i < n; ++i)
-    {
-      if(diagonal[i] == 0.)
-        return false; // zero diagonal entry: singular, or not a system this solver handles
-      if(has_off_diagonal[i])
-      {
-        reduced_index[i] = Index(state.original_index.size());
-        state.original_index.push_back(i);
-        state.row_sign.push_back(diagonal[i] < 0. ? -1. : 1.);
-      }
-      else
-      {
-        eliminated_ordinal[i] = Index(state.eliminated_index.size());
-        state.eliminated_index.push_back(i);
-        state.eliminated_diagonal.push_back(diagonal[i]);
-      }
-    }
-    const Index m = Index(state.original_index.size());
-    state.identity_reduction = (m == n)
-      && std::find(state.row_sign.begin(), state.row_sign.end(), -1.) == state.row_sign.end();
-
-    reduced = Compressed_row_matrix();
-    reduced.number_of_rows = reduced.number_of_columns = m;
-    reduced.row_start.assign(std::size_t(m) + 1, 0);
-    Compressed_row_matrix& coupling = state.coupling;
-    coupling = Compressed_row_matrix();
-    coupling.number_of_rows = m;
-    coupling.number_of_columns = Index(state.eliminated_index.size());
-    coupling.row_start.assign(std::size_t(m) + 1, 0);
-    for(Index j = 0; j < n; ++j)
-      for(Index k = outer[j]; k < outer[j + 1]; ++k)
-      {
-        const Index r = reduced_index[inner[k]];
-        if(r < 0 || (value[k] == 0. && inner[k] != j))
-          continue;
-        if(reduced_index[j] >= 0)
-          ++reduced.row_start[r + 1];
-        else
-          ++coupling.row_start[r + 1];
-      }
-    for(Index r = 0; r < m; ++r)
-    {
-      reduced.row_start[r + 1] += reduced.row_start[r];
-      coupling.row_start[r + 1] += coupling.row_start[r];
-    }
-    reduced.column.resize(reduced.row_start.back());
-    reduced.value.resize(reduced.row_start.back());
-    coupling.column.resize(coupling.row_start.back());
-    coupling.value.resize(coupling.row_start.back());
-    std::vector<Index> next_reduced(reduced.row_start.begin(), reduced.row_start.end() - 1);
-    std::vector<Index> next_coupling(coupling.row_start.begin(), coupling.row_start.end() - 1);
-    for(Index j = 0; j < n; ++j)
-      for(Index k = outer[j]; k < outer[j + 1]; ++k)
-      {
-        const Index r = reduced_index[inner[k]];
-        if(r < 0 || (value[k] == 0. && inner[k] != j))
-          continue;
-        const double signed_value = state.row_sign[r] * value[k];
-        if(reduced_index[j] >= 0)
-        {
-          const Index p = next_reduced[r]++;
-          reduced.column[p] = reduced_index[j];
-          reduced.value[p] = signed_value;
-        }
-        else
-        {
-          const Index p = next_coupling[r]++;
-          coupling.column[p] = eliminated_ordinal[j];
-          coupling.value[p] = signed_value;
-        }
-      }
-    return true;
-  }
-
+  // The policy: eliminate the diagonal rows, test the symmetry, then a direct solver below the threshold and
+  // the multigrid hierarchy above it.
   bool setup(const Eigen_matrix& E, State& state) const
   {
     Statistics& statistics = state.statistics;
@@ -422,20 +268,17 @@ private:
     statistics.level_nonzeros.clear();
     statistics.operator_complexity = statistics.grid_complexity = 0.;
     statistics.hierarchy_bytes = 0;
-    state.ldlt.reset();
-    state.lu.reset();
     state.hierarchy = internal::AMG::Ruge_stueben_hierarchy();
-    state.direct_matrix.clear_and_release();
-    state.original_size = std::size_t(E.rows());
+    state.direct_solver.clear();
 
     if(E.rows() != E.cols() || E.nonZeros() >= INT_MAX)
       return false;
     Compressed_row_matrix reduced;
-    if(!eliminate_diagonal_rows(E, state, reduced))
+    if(!state.elimination.eliminate(E, reduced))
       return false;
 
     statistics.number_of_unknowns = std::size_t(reduced.number_of_rows);
-    statistics.number_of_eliminated_rows = state.eliminated_index.size();
+    statistics.number_of_eliminated_rows = state.elimination.number_of_eliminated_rows();
     state.symmetric = internal::AMG::is_numerically_symmetric(reduced, m_parameters.symmetry_tolerance);
     statistics.symmetric = state.symmetric;
     state.direct = std::size_t(reduced.number_of_rows)
@@ -450,37 +293,18 @@ private:
     if(reduced.number_of_rows == 0)
     {
       state.direct = true;
-      state.direct_matrix = std::move(reduced);
-      return true;
+      return state.direct_solver.factor(std::move(reduced), state.symmetric);
     }
 
     if(state.direct)
     {
-      state.direct_matrix = std::move(reduced);
-      const Compressed_row_matrix& R = state.direct_matrix;
-      Eigen::Map<const Eigen::SparseMatrix<double, Eigen::RowMajor, int>> map(
-        R.number_of_rows, R.number_of_columns, Index(R.number_of_nonzeros()),
-        R.row_start.data(), R.column.data(), R.value.data());
-      const Eigen_matrix matrix = map;
-      statistics.level_sizes.push_back(std::size_t(R.number_of_rows));
-      statistics.level_nonzeros.push_back(R.number_of_nonzeros());
+      statistics.level_sizes.push_back(std::size_t(reduced.number_of_rows));
+      statistics.level_nonzeros.push_back(reduced.number_of_nonzeros());
       statistics.operator_complexity = statistics.grid_complexity = 1.;
-      if(state.symmetric)
-      {
-        state.ldlt.reset(new Eigen::SimplicialLDLT<Eigen_matrix>(matrix));
-        return state.ldlt->info() == Eigen::Success;
-      }
-      state.lu.reset(new Eigen::SparseLU<Eigen_matrix>(matrix));
-      return state.lu->info() == Eigen::Success;
+      return state.direct_solver.factor(std::move(reduced), state.symmetric);
     }
 
-    internal::AMG::Hierarchy_parameters hierarchy_parameters;
-    hierarchy_parameters.strength_threshold = m_parameters.strength_threshold;
-    hierarchy_parameters.max_coarse_size = m_parameters.max_coarse_size;
-    hierarchy_parameters.max_levels = m_parameters.max_levels;
-    hierarchy_parameters.pre_smoothing_sweeps = m_parameters.pre_smoothing_sweeps;
-    hierarchy_parameters.post_smoothing_sweeps = m_parameters.post_smoothing_sweeps;
-    const bool built = state.hierarchy.build(std::move(reduced), hierarchy_parameters);
+    const bool built = state.hierarchy.build(std::move(reduced), m_parameters.hierarchy);
 
     double total_rows = 0., total_nonzeros = 0.;
     for(std::size_t l = 0; l < state.hierarchy.number_of_levels(); ++l)
@@ -514,9 +338,9 @@ private:
   {
     Statistics& statistics = state.statistics;
     statistics.relative_residual = std::numeric_limits<double>::infinity();
-    if(!state.has_setup || !state.setup_succeeded || std::size_t(B.size()) != state.original_size)
+    if(!state.cache.has_setup() || !state.cache.succeeded() || std::size_t(B.size()) != state.elimination.size())
       return false;
-    const Index n = Index(state.original_size);
+    const Index n = Index(state.elimination.size());
     double right_hand_side_norm = 0.;
     for(Index i = 0; i < n; ++i)
     {
@@ -535,98 +359,54 @@ private:
 
     // The residual of the eliminated rows is zero, so ||B - AX|| = ||b - A x|| on the reduced system.
     const double target = m_parameters.tolerance * right_hand_side_norm;
-    const Compressed_row_matrix& A = state.reduced_matrix();
-    const Index m = A.number_of_rows;
-    if(state.identity_reduction && static_cast<const void*>(&B) != static_cast<const void*>(&X))
+    if(state.elimination.is_identity() && static_cast<const void*>(&B) != static_cast<const void*>(&X))
     {
       X.setZero();
-      return state.direct ? solve_direct(state, B.data(), X.data(), target, right_hand_side_norm)
-                          : solve_multigrid(state, B.data(), X.data(), target, right_hand_side_norm);
+      return solve_reduced_system(state, B.data(), X.data(), target, right_hand_side_norm);
     }
 
-    // Known values of the eliminated rows, then the reduced right-hand side.
-    state.known_values.resize(state.eliminated_index.size());
-    for(std::size_t e = 0; e < state.eliminated_index.size(); ++e)
-      state.known_values[e] = B[state.eliminated_index[e]] / state.eliminated_diagonal[e];
-    state.reduced_right_hand_side.resize(m);
+    // B is read in full before X is written: B and X may be the same vector.
+    const Index m = state.reduced_matrix().number_of_rows;
+    state.elimination.reduce(B.data(), state.reduced_right_hand_side);
     state.reduced_solution.assign(m, 0.);
-    for(Index r = 0; r < m; ++r)
-    {
-      double value = state.row_sign[r] * B[state.original_index[r]];
-      for(Index k = state.coupling.row_start[r]; k < state.coupling.row_start[r + 1]; ++k)
-        value -= state.coupling.value[k] * state.known_values[state.coupling.column[k]];
-      state.reduced_right_hand_side[r] = value;
-    }
-
-    const double* b = state.reduced_right_hand_side.data();
     double* x = state.reduced_solution.data();
     bool converged = true;
     if(m > 0)
-      converged = state.direct ? solve_direct(state, b, x, target, right_hand_side_norm)
-                               : solve_multigrid(state, b, x, target, right_hand_side_norm);
+      converged = solve_reduced_system(state, state.reduced_right_hand_side.data(), x, target, right_hand_side_norm);
     else
       state.statistics.relative_residual = 0.;
-
-    for(std::size_t e = 0; e < state.eliminated_index.size(); ++e)
-      X[state.eliminated_index[e]] = state.known_values[e];
-    for(Index r = 0; r < m; ++r)
-      X[state.original_index[r]] = x[r];
+    state.elimination.expand(x, X.data());
     return converged;
   }
 
-  bool solve_multigrid(State& state, const double* b, double* x, double target, double reference_norm) const
+  bool solve_reduced_system(State& state, const double* b, double* x, double target, double reference_norm) const
   {
-    auto preconditioner = [&state](const double* r, double* z) { state.hierarchy.apply_v_cycle(r, z); };
-    const Compressed_row_matrix& A = state.hierarchy.fine_matrix();
     internal::AMG::Krylov_result result;
-    switch(state.krylov_method)
+    if(state.direct)
+      result = state.direct_solver.solve(b, x, target, reference_norm);
+    else
     {
-      case Krylov_method::CONJUGATE_GRADIENT:
-        result = internal::AMG::conjugate_gradient(A, b, x, preconditioner, target, reference_norm,
-                                                   m_parameters.max_iterations, state.workspace);
-        break;
-      case Krylov_method::BICGSTAB:
-        result = internal::AMG::bicgstab(A, b, x, preconditioner, target, reference_norm,
-                                         m_parameters.max_iterations, state.workspace);
-        break;
-      default:
-        result = internal::AMG::gmres(A, b, x, preconditioner, target, reference_norm,
-                                      m_parameters.max_iterations, m_parameters.gmres_restart, state.workspace);
-        break;
+      auto preconditioner = [&state](const double* r, double* z) { state.hierarchy.apply_v_cycle(r, z); };
+      const Compressed_row_matrix& A = state.hierarchy.fine_matrix();
+      switch(state.krylov_method)
+      {
+        case Krylov_method::CONJUGATE_GRADIENT:
+          result = internal::AMG::conjugate_gradient(A, b, x, preconditioner, target, reference_norm,
+                                                     m_parameters.max_iterations, state.workspace);
+          break;
+        case Krylov_method::BICGSTAB:
+          result = internal::AMG::bicgstab(A, b, x, preconditioner, target, reference_norm,
+                                           m_parameters.max_iterations, state.workspace);
+          break;
+        default:
+          result = internal::AMG::gmres(A, b, x, preconditioner, target, reference_norm,
+                                        m_parameters.max_iterations, m_parameters.gmres_restart, state.workspace);
+          break;
+      }
     }
     state.statistics.iterations = result.iterations;
     state.statistics.relative_residual = result.relative_residual;
     return result.converged;
-  }
-
-  // Direct solve plus up to two steps of iterative refinement, so that the same tolerance holds on both paths.
-  bool solve_direct(State& state, const double* b_data, double* x_data, double target,
-                    double reference_norm) const
-  {
-    const Compressed_row_matrix& A = state.direct_matrix;
-    const Index m = A.number_of_rows;
-    Eigen::Map<const Eigen::VectorXd> b(b_data, m);
-    Eigen::Map<Eigen::VectorXd> x(x_data, m);
-    state.correction.resize(m);
-    Eigen::Map<Eigen::VectorXd> residual(state.correction.data(), m);
-    auto direct_solve = [&state](const auto& rhs) -> Eigen::VectorXd {
-      return state.ldlt ? Eigen::VectorXd(state.ldlt->solve(rhs)) : Eigen::VectorXd(state.lu->solve(rhs));
-    };
-    x = direct_solve(b);
-    for(int step = 0;; ++step)
-    {
-      internal::AMG::residual(A, x.data(), b.data(), residual.data());
-      const double residual_norm = residual.norm();
-      state.statistics.relative_residual = residual_norm / reference_norm;
-      if(!std::isfinite(residual_norm))
-        return false;
-      if(residual_norm <= target)
-        return true;
-      if(step == 2)
-        return false;
-      x += direct_solve(residual);
-      ++state.statistics.iterations;
-    }
   }
 
   Parameters m_parameters;

@@ -22,13 +22,22 @@ namespace Spherical_parameterization {
 namespace internal {
 namespace AMG {
 
+// Setup parameters of the hierarchy (AMG_solver_traits::Parameters holds one and documents it).
 struct Hierarchy_parameters
 {
-  double strength_threshold = 0.25;
-  int max_coarse_size = 200;
-  int max_levels = 25;
-  int pre_smoothing_sweeps = 1;
-  int post_smoothing_sweeps = 1;
+  double strength_threshold = 0.25; // j strongly influences i if -a_ij >= theta max_k(-a_ik)
+  int max_coarse_size = 200;        // coarsening stops at this number of unknowns, solved directly
+  int max_levels = 25;              // the finest included
+  int pre_smoothing_sweeps = 1;     // forward Gauss-Seidel sweeps before the coarse-grid correction
+  int post_smoothing_sweeps = 1;    // backward Gauss-Seidel sweeps after it
+
+  bool operator==(const Hierarchy_parameters& o) const
+  {
+    return strength_threshold == o.strength_threshold && max_coarse_size == o.max_coarse_size
+        && max_levels == o.max_levels && pre_smoothing_sweeps == o.pre_smoothing_sweeps
+        && post_smoothing_sweeps == o.post_smoothing_sweeps;
+  }
+  bool operator!=(const Hierarchy_parameters& o) const { return !(*this == o); }
 };
 
 // Sparsity pattern only (the strength graph has no values).
