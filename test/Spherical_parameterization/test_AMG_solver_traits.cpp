@@ -3,6 +3,7 @@
 // iteration counts on Poisson grids, use through CGAL's Fixed_border_parameterizer_3, and failure on bad input.
 
 #include <CGAL/Spherical_parameterization/AMG_solver_traits.h>
+#include <CGAL/Spherical_parameterization/independent_copy.h>
 
 #include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
 #include <CGAL/Surface_mesh.h>
@@ -387,7 +388,8 @@ TEST(Factor_and_solve, ReusesTheSetupAndSharesItWithCopies)
 }
 
 // The setup is kept while the matrix and the setup parameters (the hierarchy's, the symmetry test, the direct
-// solver thresholds) stay the same; a solve parameter does not count.
+// solver thresholds) stay the same; a solve parameter does not count. independent_copy() keeps the parameters and
+// shares no setup.
 TEST(Factor_and_solve, SetupParametersTriggerANewSetup)
 {
   const Disk_system system = build_disk_system(read_mesh("c3d_fandisk.off"), Weighting::COTANGENT, false);
@@ -413,6 +415,14 @@ TEST(Factor_and_solve, SetupParametersTriggerANewSetup)
   expect_new_setup("symmetry_tolerance");
   solver.parameters().direct_solver_threshold = 1;
   expect_new_setup("direct_solver_threshold");
+
+  AMG_traits copy = CGAL::Spherical_parameterization::independent_copy(solver);
+  EXPECT_TRUE(copy.parameters().hierarchy == solver.parameters().hierarchy);
+  EXPECT_EQ(copy.parameters().tolerance, 1e-8);
+  EXPECT_EQ(copy.statistics().number_of_setups, 0u);
+  ASSERT_TRUE(copy.factor(AMG_traits::Matrix(system.A), D));
+  EXPECT_EQ(copy.statistics().number_of_setups, 1u);
+  EXPECT_EQ(solver.statistics().number_of_setups, setups);
 }
 
 TEST(Direct_solver_threshold, SmallSystemsGoToTheDirectSolver)

@@ -19,6 +19,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <atomic>
 #include <chrono>
 #include <cmath>
 #include <csignal>
@@ -966,6 +967,61 @@ TEST(SphericalParameterize, ParallelTagGivesTheSameMap)
       EXPECT_EQ(r1.residual, r2.residual) << file;
       for(auto v : m.vertices()) ASSERT_TRUE(sequential[v] == parallel[v]) << file;
     }
+#else
+  GTEST_SKIP() << "built without TBB: CGAL::Parallel_tag is not available";
+#endif
+}
+
+namespace {
+
+// A disk solver with a setting of its own, which a default-constructed one lacks; Eigen's sparse LU on each call,
+// so that its copies share nothing.
+std::atomic<int> solves_with_the_users_setting{0}, solves_without_it{0};
+
+struct Disk_solver_with_a_setting {
+  using NT = double;
+  using Matrix = CGAL::Eigen_sparse_matrix<double>;
+  using Vector = CGAL::Eigen_vector<double>;
+
+  bool users_setting = false;
+
+  bool linear_solver(const Matrix& A, const Vector& B, Vector& X, NT& D)
+  {
+    ++(users_setting ? solves_with_the_users_setting : solves_without_it);
+    Eigen::SparseLU<Matrix::EigenType> lu(A.eigen_object());
+    if(lu.info() != Eigen::Success) return false;
+    X = Vector::EigenType(lu.solve(B.eigen_object()));
+    D = 1;
+    return lu.info() == Eigen::Success;
+  }
+};
+
+} // namespace
+
+// With CGAL::Parallel_tag each disk gets its own copy of the user's solver: its settings reach both disks (a
+// default-constructed solver per disk would drop them), and the map is the same as with Sequential_tag.
+TEST(SphericalParameterize, ParallelTagKeepsTheDiskSolversSettings)
+{
+#ifdef CGAL_LINKED_WITH_TBB
+  Mesh m = read_mesh(cgal_data + "/triceratops.off");
+  auto sequential = m.add_property_map<Mesh::Vertex_index, Point>("v:sequential").first;
+  auto parallel = m.add_property_map<Mesh::Vertex_index, Point>("v:parallel").first;
+  Disk_solver_with_a_setting solver;
+  solver.users_setting = true;
+  const auto np = CGAL::parameters::sparse_linear_solver(solver);
+
+  solves_with_the_users_setting = solves_without_it = 0;
+  const SP::Result r1 = SP::spherical_parameterize<CGAL::Sequential_tag>(m, sequential, np);
+  const int sequential_solves = solves_with_the_users_setting;
+  EXPECT_GE(sequential_solves, 4);  // u and v on each disk
+  EXPECT_EQ(solves_without_it, 0);
+
+  solves_with_the_users_setting = solves_without_it = 0;
+  const SP::Result r2 = SP::spherical_parameterize<CGAL::Parallel_tag>(m, parallel, np);
+  EXPECT_EQ(solves_with_the_users_setting, sequential_solves);
+  EXPECT_EQ(solves_without_it, 0);
+  EXPECT_EQ(r1.status, r2.status);
+  for(auto v : m.vertices()) ASSERT_TRUE(sequential[v] == parallel[v]);
 #else
   GTEST_SKIP() << "built without TBB: CGAL::Parallel_tag is not available";
 #endif

@@ -14,8 +14,15 @@ requirements are those of CGAL's `SparseLinearAlgebraTraits_d`, as that class us
 - `linear_solver(A, B, X, D)` is called twice per half with the same `A`, for the u and then the v coordinates:
   a solver that caches its factorization (as `CGAL::Spherical_parameterization::AMG_solver_traits` does) pays
   one setup per half.
-- The object is copied into each parameterizer: copies must be usable independently, or share their state
-  safely, as copies of `CGAL::Eigen_solver_traits` and of `AMG_solver_traits` do.
+- The object is copied into each parameterizer (copy construction): the copies may share state with it, as
+  copies of `CGAL::Eigen_solver_traits` and of `AMG_solver_traits` do, so that its statistics see the solves.
+- With `CGAL::Parallel_tag` the two disks are embedded at the same time, on two threads, each with its own
+  solver made by `CGAL::Spherical_parameterization::independent_copy(solver)` from the user's object: by
+  default a copy (copy construction), so the settings of the user's object reach both disks. A type whose
+  copies share state that two threads may not use at once overloads `independent_copy()` in its own namespace;
+  the package does so for `AMG_solver_traits` (same parameters, own setup and statistics) and for
+  `CGAL::Eigen_solver_traits` (a new Eigen solver: Eigen's solvers cannot be copied, so settings made through
+  `solver()` are lost). The statistics of the user's object do not see these solves.
 - Returning `false` is a recoverable failure: the package then tries Eigen's sparse LU
   (`CGAL::Spherical_parameterization::Sparse_LU_disk_solver_traits`) before it gives up with
   `Error_code::DISK_EMBEDDING_FAILED`.

@@ -42,7 +42,8 @@ The setup (strength of connection, coarse/fine splitting, classical interpolatio
 done by `factor()`, or by the first call of `linear_solver(A, B, X, D)`, and is cached: a call with a matrix of
 the same size, structure and values reuses it, so that solving for the u and then the v coordinates costs one
 setup. Copies of a traits object share the setup and the statistics, as copies of `CGAL::Eigen_solver_traits`
-share their solver.
+share their solver; `independent_copy()` (in `<CGAL/Spherical_parameterization/independent_copy.h>`) makes one
+with the same parameters and a setup of its own, for another thread.
 
 Below `Parameters::direct_solver_threshold` unknowns (`Parameters::direct_solver_threshold_non_symmetric` for
 non-symmetric systems) the system is handed over to a direct solver (`Eigen::SimplicialLDLT` when symmetric,

@@ -7,6 +7,7 @@
 #include <CGAL/Spherical_parameterization/Error_code.h>
 #include <CGAL/Spherical_parameterization/Result.h>
 #include <CGAL/Spherical_parameterization/check_input.h>
+#include <CGAL/Spherical_parameterization/independent_copy.h>
 #include <CGAL/Spherical_parameterization/internal/Mesh_arrays.h>
 #include <CGAL/Spherical_parameterization/internal/Sphere_mapper.h>
 #include <CGAL/Spherical_parameterization/internal/Sphere_system.h>
@@ -111,7 +112,8 @@ using Sparse_LU_disk_solver_traits = internal::Sparse_LU_solver_traits;
 ///     \cgalParamType{`idx_t*`, or a pointer to an array of `METIS_NOPTIONS` `idx_t`}
 ///     \cgalParamDefault{METIS' defaults with `metis_seed`} \cgalParamNEnd
 ///   \cgalParamNBegin{sparse_linear_solver} \cgalParamDescription{the linear solver of the disk stage; if it fails,
-///     Eigen's sparse LU is tried before `Error_code::DISK_EMBEDDING_FAILED`}
+///     Eigen's sparse LU is tried before `Error_code::DISK_EMBEDDING_FAILED`. With `CGAL::Parallel_tag` each disk
+///     is embedded with its own `independent_copy()` of it}
 ///     \cgalParamType{a model of `SphericalParameterizationDiskSolverTraits`}
 ///     \cgalParamDefault{`AMG_solver_traits` (`Default_disk_solver_traits`)} \cgalParamNEnd
 ///   \cgalParamNBegin{progress_callback} \cgalParamDescription{called after stage 1 and after every iteration;

@@ -5,9 +5,9 @@
 #ifndef CGAL_SPHERICAL_PARAMETERIZATION_INTERNAL_SPHERE_MAPPER_H
 #define CGAL_SPHERICAL_PARAMETERIZATION_INTERNAL_SPHERE_MAPPER_H
 
-#include <CGAL/Spherical_parameterization/AMG_solver_traits.h>
 #include <CGAL/Spherical_parameterization/Error_code.h>
 #include <CGAL/Spherical_parameterization/Result.h>
+#include <CGAL/Spherical_parameterization/independent_copy.h>
 #include <CGAL/Spherical_parameterization/internal/Mesh_arrays.h>
 #include <CGAL/Spherical_parameterization/internal/Sphere_system.h>
 #include <CGAL/Spherical_parameterization/internal/disk_embedding.h>
@@ -68,12 +68,6 @@ struct Pipeline_options {
   std::function<bool(const Progress&)> report;
 };
 
-// A solver that shares no state with `solver`, for a disk embedded on another thread (copies of the solver
-// traits share their factorization, as CGAL's Eigen_solver_traits do).
-template <typename SolverTraits>
-SolverTraits independent_solver(const SolverTraits&) { return SolverTraits(); }
-inline AMG_solver_traits independent_solver(const AMG_solver_traits& solver) { return AMG_solver_traits(solver.parameters()); }
-
 // Stage 1 for one weighting: two disks, Moebius inversion and inverse stereographic projection. With `parallel`
 // (CGAL::Parallel_tag and TBB) the two disks are embedded at the same time; the result is the same.
 template <typename SolverTraits>
@@ -90,7 +84,8 @@ bool initial_sphere(const Mesh_arrays& mesh, const Sphere_system& system, const 
   bool embedded_a = false, embedded_b = false;
 #ifdef CGAL_LINKED_WITH_TBB
   if(parallel) {
-    const SolverTraits solver_a = independent_solver(solver), solver_b = independent_solver(solver);
+    // Unqualified: a user's overload in the solver's namespace is found too.
+    const SolverTraits solver_a = independent_copy(solver), solver_b = independent_copy(solver);
     tbb::parallel_invoke([&] { embedded_a = embed_one_disk(mesh, system, partition, 1, weighting, solver_a, u_a, v_a); },
                          [&] { embedded_b = embed_one_disk(mesh, system, partition, 0, weighting, solver_b, u_b, v_b); });
   } else
