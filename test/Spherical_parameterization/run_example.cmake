@@ -1,5 +1,8 @@
-# Runs an example and checks what a user would: exit code 0, the lines it must print, the files it must write.
-#   cmake -DPROGRAM=... [-DARGUMENTS=a;b] [-DEXPECT=regex;regex] [-DFILES=f;g] -DWORK_DIR=... -P run_example.cmake
+# Runs an example and checks what a user would: exit code 0, the lines it must print, the figures they show, the
+# files it must write.
+#   cmake -DPROGRAM=... [-DARGUMENTS=a;b] [-DEXPECT=regex;regex] [-DRANGES=regex;min;max;...] [-DFILES=f;g]
+#         -DWORK_DIR=... -P run_example.cmake
+# RANGES: triples of a regex whose first group captures a number, and the bounds that number must lie within.
 file(REMOVE_RECURSE ${WORK_DIR})
 file(MAKE_DIRECTORY ${WORK_DIR})
 execute_process(COMMAND ${PROGRAM} ${ARGUMENTS} WORKING_DIRECTORY ${WORK_DIR}
@@ -13,6 +16,24 @@ foreach(expected IN LISTS EXPECT)
     message(FATAL_ERROR "the output lacks a line matching '${expected}'")
   endif()
 endforeach()
+list(LENGTH RANGES range_items)
+if(range_items GREATER 0)
+  math(EXPR last "${range_items} - 1")
+  foreach(i RANGE 0 ${last} 3)
+    math(EXPR i_min "${i} + 1")
+    math(EXPR i_max "${i} + 2")
+    list(GET RANGES ${i} pattern)
+    list(GET RANGES ${i_min} low)
+    list(GET RANGES ${i_max} high)
+    if(NOT output MATCHES "${pattern}")
+      message(FATAL_ERROR "the output lacks a line matching '${pattern}'")
+    endif()
+    set(value "${CMAKE_MATCH_1}")
+    if(NOT value MATCHES "^[-+]?[0-9]*\\.?[0-9]+([eE][-+]?[0-9]+)?$" OR value LESS low OR value GREATER high)
+      message(FATAL_ERROR "'${pattern}' gave ${value}, outside [${low}, ${high}]")
+    endif()
+  endforeach()
+endif()
 foreach(written IN LISTS FILES)
   if(NOT EXISTS ${WORK_DIR}/${written})
     message(FATAL_ERROR "${written} was not written")

@@ -9,6 +9,7 @@
 
 #include <CGAL/Exact_predicates_exact_constructions_kernel.h>
 #include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
+#include <CGAL/Exact_rational.h>
 #include <CGAL/IO/polygon_soup_io.h>
 #include <CGAL/Polygon_mesh_processing/IO/polygon_mesh_io.h>
 #include <CGAL/Polyhedron_3.h>
@@ -19,6 +20,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <array>
 #include <atomic>
 #include <chrono>
 #include <cmath>
@@ -122,6 +124,82 @@ Mesh read_mesh(const std::string& path)
   Mesh m;
   EXPECT_TRUE(CGAL::IO::read_polygon_mesh(path, m)) << path;
   return m;
+}
+
+// The tests' own certificate, sharing no code with the package's (internal::certify, its filtered predicate and its
+// degree test), so that a test that compares the two can fail. On the coordinates as the map holds them (what a
+// user writes to a file): the sign of det(a, b, c) of each face, in double where Shewchuk's error bound for this
+// expression decides it, otherwise in exact rational arithmetic (a double converts exactly). With every face
+// positive on a closed surface, the faces whose cone holds a direction d on no plane through an edge are as many
+// as the degree of the map, the same for every such d; degree 1 then makes the map a bijection.
+struct Exact_certificate {
+  bool closed_triangle_mesh = false;
+  std::size_t non_positive_faces = 0;
+  std::size_t degree = 0;  // counted only when the mesh is closed and every face positive
+  bool bijective() const { return closed_triangle_mesh && non_positive_faces == 0 && degree == 1; }
+};
+
+using Coordinates = std::array<double, 3>;
+
+int sign_of_det(const Coordinates& a, const Coordinates& b, const Coordinates& c)
+{
+  for(const Coordinates* p : {&a, &b, &c})
+    for(double v : *p) if(!std::isfinite(v)) return 0;
+  const double det = a[0] * (b[1] * c[2] - b[2] * c[1]) + a[1] * (b[2] * c[0] - b[0] * c[2]) + a[2] * (b[0] * c[1] - b[1] * c[0]);
+  const double permanent = std::abs(a[0]) * (std::abs(b[1] * c[2]) + std::abs(b[2] * c[1])) +
+                           std::abs(a[1]) * (std::abs(b[2] * c[0]) + std::abs(b[0] * c[2])) +
+                           std::abs(a[2]) * (std::abs(b[0] * c[1]) + std::abs(b[1] * c[0]));
+  // Shewchuk's bound for orient3d is (7 + 56 eps) eps times the permanent: 1e-14 is ten times that. Near the
+  // underflow the bound does not hold, and the exact arithmetic decides.
+  if(std::isfinite(permanent) && permanent > 1e-250 && std::abs(det) > 1e-14 * permanent) return det > 0. ? 1 : -1;
+  using Q = CGAL::Exact_rational;
+  const Q ax(a[0]), ay(a[1]), az(a[2]), bx(b[0]), by(b[1]), bz(b[2]), cx(c[0]), cy(c[1]), cz(c[2]);
+  const Q exact = ax * (by * cz - bz * cy) + ay * (bz * cx - bx * cz) + az * (bx * cy - by * cx);
+  return exact > 0 ? 1 : (exact < 0 ? -1 : 0);
+}
+
+template <typename FaceGraph, typename SphereMap>
+Exact_certificate exact_certificate(const FaceGraph& g, const SphereMap& sphere)
+{
+  Exact_certificate certificate;
+  certificate.closed_triangle_mesh = CGAL::is_closed(g) && CGAL::is_triangle_mesh(g) && !faces(g).empty();
+  std::vector<std::array<Coordinates, 3>> triangles;
+  for(auto f : faces(g)) {
+    std::array<Coordinates, 3> t;
+    auto h = halfedge(f, g);
+    for(Coordinates& corner : t) {
+      const auto& p = get(sphere, target(h, g));
+      corner = {CGAL::to_double(p.x()), CGAL::to_double(p.y()), CGAL::to_double(p.z())};
+      h = next(h, g);
+    }
+    if(sign_of_det(t[0], t[1], t[2]) <= 0) ++certificate.non_positive_faces;
+    triangles.push_back(t);
+  }
+  if(!certificate.closed_triangle_mesh || certificate.non_positive_faces > 0) return certificate;
+  const Coordinates directions[] = {{0.5773502691896258, 0.4472135954999579, 0.6830127018922193},
+                                    {-0.3141592653589793, 0.2718281828459045, -0.8660254037844386},
+                                    {0.1234567891234567, -0.9876543219876543, 0.3456789123456789}};
+  for(const Coordinates& d : directions) {
+    std::size_t covering = 0;
+    bool generic = true;
+    for(const auto& t : triangles) {
+      const int s0 = sign_of_det(t[0], t[1], d), s1 = sign_of_det(t[1], t[2], d), s2 = sign_of_det(t[2], t[0], d);
+      if(s0 == 0 || s1 == 0 || s2 == 0) { generic = false; break; }
+      if(s0 > 0 && s1 > 0 && s2 > 0) ++covering;
+    }
+    if(generic) { certificate.degree = covering; break; }
+  }
+  return certificate;
+}
+
+// The map read back from an OFF file written with the digits a user would write (17 significant ones).
+Mesh written_and_read_back(const Mesh& m, const Mesh::Property_map<Mesh::Vertex_index, Point>& sphere)
+{
+  std::stringstream file;
+  EXPECT_TRUE(CGAL::IO::write_OFF(file, m, CGAL::parameters::vertex_point_map(sphere).stream_precision(17)));
+  Mesh back;
+  EXPECT_TRUE(CGAL::IO::read_OFF(file, back));
+  return back;
 }
 
 SPI::Mesh_arrays arrays_of(const Mesh& m)
@@ -698,7 +776,7 @@ TEST(Multilevel, ConvergesAndReportsItsLevels)
     const SP::Result result = SP::spherical_parameterize(mesh, sphere, SP::parameters::multilevel(multilevel));
     ASSERT_EQ(result.status, SP::Error_code::OK) << result.message;
     EXPECT_LE(result.max_imbalance, 1e-6);
-    EXPECT_TRUE(SP::is_bijective_on_sphere(mesh, sphere));
+    EXPECT_TRUE(exact_certificate(mesh, sphere).bijective());
     if(multilevel) {
       ASSERT_GE(result.levels.size(), 2u);
       EXPECT_EQ(result.levels.back().vertices, num_vertices(mesh));
@@ -865,6 +943,7 @@ TEST(Certificate, DetectsFlipsAndDoubleCovers)
   }
   SP::Sphere_map_certificate c = SP::certify_sphere_map(m, sphere);
   EXPECT_TRUE(c.bijective);
+  EXPECT_TRUE(exact_certificate(m, sphere).bijective());
   EXPECT_NEAR(c.total_signed_area, 4 * CGAL_PI, 1e-12);
   const SP::Spherical_distortion d = SP::measure_spherical_distortion(m, sphere);
   EXPECT_LT(d.max_angle_error_degrees, 1e-9);
@@ -875,7 +954,42 @@ TEST(Certificate, DetectsFlipsAndDoubleCovers)
   c = SP::certify_sphere_map(m, sphere);
   EXPECT_FALSE(c.bijective);
   EXPECT_EQ(c.flipped_faces, m.number_of_faces());
+  EXPECT_EQ(exact_certificate(m, sphere).non_positive_faces, m.number_of_faces());
   EXPECT_FALSE(SP::is_bijective_on_sphere(m, sphere));
+
+  // A double cover with every triangle positive: a bipyramid over 7 equator vertices whose map wraps the equator
+  // twice around the sphere (longitude 2 * 2 pi k / 7, as z -> z^2 does; 7 is odd, so no two vertices meet) with
+  // the apexes on the poles, branched there. Each triangle spans 103 degrees of longitude, so it is positive;
+  // every generic point is covered twice.
+  const std::size_t equator = 7;
+  Arrays bipyramid;
+  bipyramid.points = {Point(0, 0, 1), Point(0, 0, -1)};
+  for(std::size_t k = 0; k < equator; ++k) {
+    const double longitude = 2 * CGAL_PI * double(k) / double(equator);
+    bipyramid.points.emplace_back(std::cos(longitude), std::sin(longitude), 0.);
+    bipyramid.faces.push_back({0, 2 + k, 2 + (k + 1) % equator});
+    bipyramid.faces.push_back({1, 2 + (k + 1) % equator, 2 + k});
+  }
+  Mesh twice = to_mesh(bipyramid);
+  ASSERT_TRUE(SP::check_input(twice));
+  auto doubled = twice.add_property_map<Mesh::Vertex_index, Point>("v:sphere").first;
+  std::size_t k = 0;
+  for(auto v : twice.vertices()) {
+    const Point& p = twice.point(v);
+    if(p.z() != 0.) { doubled[v] = p; continue; }
+    // Latitudes alternately above and below the equator, so that the example is not special.
+    const double longitude = 2 * std::atan2(p.y(), p.x()), z = (k++ % 2 == 0 ? 0.2 : -0.3), r = std::sqrt(1 - z * z);
+    doubled[v] = Point(r * std::cos(longitude), r * std::sin(longitude), z);
+  }
+  const Exact_certificate exact_twice = exact_certificate(twice, doubled);
+  EXPECT_EQ(exact_twice.non_positive_faces, 0u);
+  EXPECT_EQ(exact_twice.degree, 2u);
+  c = SP::certify_sphere_map(twice, doubled);
+  EXPECT_TRUE(c.valid_mesh);
+  EXPECT_EQ(c.flipped_faces, 0u);
+  EXPECT_FALSE(c.bijective);
+  EXPECT_NEAR(c.total_signed_area, 8 * CGAL_PI, 1e-9);
+  EXPECT_FALSE(SP::is_bijective_on_sphere(twice, doubled));
 
   // An open mesh can have every triangle positive without covering the sphere: not a certificate.
   Arrays open = octahedron();
@@ -887,10 +1001,12 @@ TEST(Certificate, DetectsFlipsAndDoubleCovers)
   EXPECT_EQ(open_certificate.flipped_faces, 0u);
   EXPECT_FALSE(open_certificate.valid_mesh);
   EXPECT_FALSE(open_certificate.bijective);
+  EXPECT_FALSE(exact_certificate(open_mesh, open_sphere).bijective());
 
   // All vertices on a great circle: degenerate, not positive.
   for(auto v : m.vertices()) sphere[v] = Point(sphere[v].x(), sphere[v].y(), 0.);
   EXPECT_FALSE(SP::is_bijective_on_sphere(m, sphere));
+  EXPECT_FALSE(exact_certificate(m, sphere).bijective());
 
   // A non-finite point is not positive, and never reaches the exact arithmetic (found by the sanitizer build,
   // where CGAL's assertions are on: a backtracked Gauss-Seidel move on the octahedron went through the centre).
@@ -900,6 +1016,55 @@ TEST(Certificate, DetectsFlipsAndDoubleCovers)
   EXPECT_FALSE(SPI::is_positive(SPI::Vector3(nan, 0, 0), e2, e3));
   EXPECT_FALSE(SPI::is_positive(e1, SPI::Vector3(0, inf, 0), e3));
   EXPECT_FALSE(SPI::is_positive(e1, e2, SPI::Vector3(0, 0, -inf)));
+}
+
+// Kernels whose coordinate functors change what the points say, to see that the functions read the points
+// through `geom_traits` (as spherical_parameterize() does), not through Point_3::x().
+struct Stretched_x_kernel : Kernel {
+  struct Compute_x_3 {
+    double operator()(const Point& p) const { return 3. * p.x(); }
+  };
+  Compute_x_3 compute_x_3_object() const { return Compute_x_3(); }
+};
+
+struct Nan_x_kernel : Kernel {
+  struct Compute_x_3 {
+    double operator()(const Point&) const { return std::numeric_limits<double>::quiet_NaN(); }
+  };
+  Compute_x_3 compute_x_3_object() const { return Compute_x_3(); }
+};
+
+// check_input(), certify_sphere_map() and measure_spherical_distortion() read the mesh's points through
+// `vertex_point_map` and `geom_traits`, as spherical_parameterize() does.
+TEST(Certificate, ChecksAndDistortionReadThePointsAsTheMainFunction)
+{
+  Mesh m = to_mesh(icosahedron());
+  auto sphere = m.add_property_map<Mesh::Vertex_index, Point>("v:sphere").first;
+  auto broken = m.add_property_map<Mesh::Vertex_index, Point>("v:broken").first;
+  auto stretched = m.add_property_map<Mesh::Vertex_index, Point>("v:stretched").first;
+  for(auto v : m.vertices()) {
+    const Point& p = m.point(v);
+    sphere[v] = p;  // the icosahedron of make_icosahedron() is inscribed in the unit sphere
+    broken[v] = p;
+    stretched[v] = Point(3. * p.x(), p.y(), p.z());
+  }
+  broken[*m.vertices().begin()] = Point(std::numeric_limits<double>::quiet_NaN(), 0, 0);
+
+  EXPECT_TRUE(SP::check_input(m));
+  EXPECT_EQ(SP::check_input(m, CGAL::parameters::vertex_point_map(broken)).status, SP::Error_code::NON_FINITE_COORDINATES);
+  EXPECT_EQ(SP::check_input(m, CGAL::parameters::geom_traits(Nan_x_kernel())).status, SP::Error_code::NON_FINITE_COORDINATES);
+
+  EXPECT_TRUE(SP::certify_sphere_map(m, sphere).bijective);
+  EXPECT_FALSE(SP::certify_sphere_map(m, sphere, CGAL::parameters::vertex_point_map(broken)).valid_mesh);
+  EXPECT_FALSE(SP::certify_sphere_map(m, sphere, CGAL::parameters::geom_traits(Nan_x_kernel())).valid_mesh);
+
+  // The identity has no distortion; against the mesh stretched along x, given either way, it has the same.
+  EXPECT_LT(SP::measure_spherical_distortion(m, sphere).max_angle_error_degrees, 1e-9);
+  const SP::Spherical_distortion by_map = SP::measure_spherical_distortion(m, sphere, CGAL::parameters::vertex_point_map(stretched));
+  const SP::Spherical_distortion by_traits = SP::measure_spherical_distortion(m, sphere, CGAL::parameters::geom_traits(Stretched_x_kernel()));
+  EXPECT_GT(by_map.mean_angle_error_degrees, 5.);
+  EXPECT_EQ(by_map.mean_angle_error_degrees, by_traits.mean_angle_error_degrees);
+  EXPECT_EQ(by_map.log_area_ratio_stddev, by_traits.log_area_ratio_stddev);
 }
 
 // ---------------------------------------------------------------------------------------------------------------
@@ -918,7 +1083,10 @@ TEST(SphericalParameterize, SurfaceMeshAndPolyhedronGiveTheSameSphere)
     const SP::Result rp = SP::spherical_parameterize(p, poly_sphere);
     ASSERT_EQ(rm.status, SP::Error_code::OK) << rm.message;
     ASSERT_EQ(rp.status, SP::Error_code::OK) << rp.message;
-    EXPECT_TRUE(SP::is_bijective_on_sphere(p, poly_sphere));
+    EXPECT_TRUE(exact_certificate(p, poly_sphere).bijective()) << file;
+    // As a user saves it: written to an OFF file and read back.
+    const Mesh saved = written_and_read_back(m, sm_sphere);
+    EXPECT_TRUE(exact_certificate(saved, get(CGAL::vertex_point, saved)).bijective()) << file;
     std::size_t i = 0;
     double largest = 0.;
     auto pv = p.vertices_begin();
@@ -1034,7 +1202,7 @@ TEST(SphericalParameterize, TinyMeshes)
     auto sphere = m.add_property_map<Mesh::Vertex_index, Point>("v:sphere").first;
     const SP::Result r = SP::spherical_parameterize(m, sphere);
     EXPECT_EQ(r.status, SP::Error_code::OK) << r.message;
-    EXPECT_TRUE(SP::is_bijective_on_sphere(m, sphere));
+    EXPECT_TRUE(exact_certificate(m, sphere).bijective());
   }
 }
 
@@ -1103,9 +1271,9 @@ TEST(NoBalancedSolution, ClearStatusAndCertifiedFallbackMap)
       EXPECT_LE(result.gauss_seidel.iterations + result.newton.iterations, 200u);
       EXPECT_LT(result.total_seconds, 30.);
       ASSERT_EQ(positions.size(), mesh.number_of_vertices());
-      const SP::Sphere_map_certificate certificate = SP::certify_sphere_map(mesh, sphere);
-      EXPECT_TRUE(certificate.bijective) << a->points.size() << " vertices, " << certificate.flipped_faces << " flips";
-      EXPECT_EQ(result.bijective, certificate.bijective);
+      const Exact_certificate certificate = exact_certificate(mesh, sphere);
+      EXPECT_TRUE(certificate.bijective()) << a->points.size() << " vertices, " << certificate.non_positive_faces << " flips";
+      EXPECT_EQ(result.bijective, certificate.bijective());
     }
     // Cotangent weights can be negative, where the proof does not apply: a status that says what happened, in
     // bounded time (the stagnation rule), and figures that the certificate confirms.
@@ -1118,10 +1286,11 @@ TEST(NoBalancedSolution, ClearStatusAndCertifiedFallbackMap)
     // measured here for the 8,492-vertex case on a loaded 2-core machine.
     EXPECT_LT(result.total_seconds, 300.);
     ASSERT_EQ(positions.size(), mesh.number_of_vertices()) << result.message;
-    const SP::Sphere_map_certificate certificate = SP::certify_sphere_map(mesh, sphere);
-    EXPECT_EQ(result.bijective, certificate.bijective) << result.message;
+    const Exact_certificate certificate = exact_certificate(mesh, sphere);
+    EXPECT_EQ(result.bijective, certificate.bijective()) << result.message;
+    EXPECT_EQ(result.flipped_faces, certificate.non_positive_faces) << result.message;
     if(result.status == SP::Error_code::OK || result.status == SP::Error_code::NO_BALANCED_SOLUTION)
-      EXPECT_TRUE(certificate.bijective) << result.message;
+      EXPECT_TRUE(certificate.bijective()) << result.message;
     else
       EXPECT_TRUE(result.status == SP::Error_code::NOT_CONVERGED || result.status == SP::Error_code::NOT_BIJECTIVE) << result.message;
   }
@@ -1218,7 +1387,8 @@ TEST(SphericalParameterize, NamedParametersAndUserWeights)
   ASSERT_TRUE(r2) << r2.message;
   EXPECT_LT(r1.residual, 5e-7);
   EXPECT_LT(r2.residual, 5e-7);
-  EXPECT_TRUE(SP::is_bijective_on_sphere(m, b));
+  EXPECT_TRUE(exact_certificate(m, a).bijective());
+  EXPECT_TRUE(exact_certificate(m, b).bijective());
 
   // CGAL's METIS_options tag reaches the separator, given as the array or, as CGAL's METIS functions take it,
   // as a pointer to the array.
@@ -1267,7 +1437,7 @@ TEST(SphericalParameterize, InternalRenumberingIsInvisible)
   // Carried back vertex by vertex, the map is a certified bijective map of the original mesh.
   auto back = m.add_property_map<Mesh::Vertex_index, Point>("v:back").first;
   for(std::size_t i = 0; i < vertices.size(); ++i) back[vertices[i]] = sphere[copy_of[i]];
-  EXPECT_TRUE(SP::is_bijective_on_sphere(m, back));
+  EXPECT_TRUE(exact_certificate(m, back).bijective());
 
   // Symmetric weights that change from vertex to vertex reach the right edges: the output balances exactly them.
   auto weight = m.add_property_map<Mesh::Halfedge_index, double>("h:w").first;
@@ -1446,7 +1616,7 @@ Arrays degenerate_sphere(Defect defect)
 
 struct Degenerate_outcome {
   SP::Result result;
-  SP::Sphere_map_certificate certificate;
+  Exact_certificate certificate;
   bool finite = true;
 };
 
@@ -1459,7 +1629,7 @@ Degenerate_outcome map_degenerate(const Mesh& mesh, SP::Weighting weighting)
       mesh, sphere, SP::parameters::combine(SP::parameters::weighting(weighting), SP::parameters::max_seconds(2.)));
   for(const auto& entry : positions)
     outcome.finite = outcome.finite && std::isfinite(entry.second.x()) && std::isfinite(entry.second.y()) && std::isfinite(entry.second.z());
-  if(positions.size() == mesh.number_of_vertices()) outcome.certificate = SP::certify_sphere_map(mesh, sphere);
+  if(positions.size() == mesh.number_of_vertices()) outcome.certificate = exact_certificate(mesh, sphere);
   return outcome;
 }
 
@@ -1484,11 +1654,10 @@ void expect_honest(const Mesh& mesh, const std::string& name, std::size_t expect
     EXPECT_TRUE(o.result.status == SP::Error_code::OK || o.result.status == SP::Error_code::NOT_CONVERGED ||
                 o.result.status == SP::Error_code::NOT_BIJECTIVE) << what;
     EXPECT_TRUE(std::isfinite(o.result.residual) && o.result.residual >= 0.) << what;
-    EXPECT_EQ(o.result.bijective, o.certificate.bijective) << what << " (certificate: valid mesh " << o.certificate.valid_mesh
-                                                           << ", area " << o.certificate.total_signed_area << ", result's area "
-                                                           << o.result.total_signed_area << ")";
-    EXPECT_EQ(o.result.flipped_faces, o.certificate.flipped_faces) << what;
-    if(o.result.status == SP::Error_code::OK) EXPECT_TRUE(o.certificate.bijective) << what;
+    EXPECT_EQ(o.result.bijective, o.certificate.bijective()) << what << " (exact certificate: degree " << o.certificate.degree
+                                                             << ", result's area " << o.result.total_signed_area << ")";
+    EXPECT_EQ(o.result.flipped_faces, o.certificate.non_positive_faces) << what;
+    if(o.result.status == SP::Error_code::OK) EXPECT_TRUE(o.certificate.bijective()) << what;
     else EXPECT_NE(o.result.message.find("flipped faces"), std::string::npos) << what;
   }
 }
@@ -1586,10 +1755,10 @@ TEST(NonConvergence, TinyCapsGiveTheBestIterateAndItsFigures)
     for(auto v : mesh.vertices()) x[std::size_t(v)] = SPI::Vector3(positions[v].x(), positions[v].y(), positions[v].z());
     EXPECT_NEAR(SPI::compute_residuals(system, x).paper, result.residual, 1e-15) << what;
     EXPECT_LE(result.residual, result.initial_guess.residual) << what;
-    const SP::Sphere_map_certificate certificate = SP::certify_sphere_map(mesh, sphere);
-    EXPECT_EQ(result.flipped_faces, certificate.flipped_faces) << what;
-    EXPECT_EQ(result.bijective, certificate.bijective) << what;
-    EXPECT_TRUE(certificate.bijective) << what << " (backtracking keeps the Tutte start bijective)";
+    const Exact_certificate certificate = exact_certificate(mesh, sphere);
+    EXPECT_EQ(result.flipped_faces, certificate.non_positive_faces) << what;
+    EXPECT_EQ(result.bijective, certificate.bijective()) << what;
+    EXPECT_TRUE(certificate.bijective()) << what << " (backtracking keeps the Tutte start bijective)";
   }
 }
 

@@ -9,7 +9,7 @@ namespace Spherical_parameterization {
 /// \ingroup PkgSphericalParameterizationRef
 /// Why a call succeeded or failed. Input errors are detected before any work and leave every output untouched.
 enum class Error_code {
-  OK = 0,                    ///< Converged: `Res < tolerance` and certified bijective.
+  OK = 0,                    ///< Converged (the `convergence_test` holds) and certified bijective.
   EMPTY_MESH,                ///< The mesh has no face.
   NOT_TRIANGLE_MESH,         ///< A face is not a triangle.
   DEGENERATE_FACE,           ///< A face uses the same vertex twice, or a vertex index out of range.
@@ -24,9 +24,10 @@ enum class Error_code {
   INVALID_WEIGHTS,           ///< A weight is not finite, or a vertex's weights do not have a positive sum.
   PARTITION_FAILED,          ///< The mesh could not be split into two disks (stage 1).
   DISK_EMBEDDING_FAILED,     ///< The planar disk embedding of a half failed (stage 1).
-  NOT_CONVERGED,             ///< The iteration caps or the time budget were reached before `Res < tolerance`.
+  NOT_CONVERGED,             ///< The iteration caps or the time budget were reached before the `convergence_test` held.
   NOT_BIJECTIVE,             ///< The convergence test holds but the map is not bijective: some spherical triangles are not
-                             ///< positively oriented, or, with every one positive, the map does not have degree 1.
+                             ///< positively oriented, or, with every one positive, the map does not have degree 1 (a
+                             ///< generic point covered more than once, or signed areas that do not add up to 4 pi).
   NO_BALANCED_SOLUTION,      ///< The connectivity is not inscribable: no bijective solution exists for positive weights.
   CANCELLED                  ///< The `progress_callback` asked to stop.
 };

@@ -16,9 +16,10 @@ namespace Spherical_parameterization {
 /// \ingroup PkgSphericalParameterizationRef
 /// Figures of one stage of the method.
 struct Stage_statistics {
-  /// Sweeps over the vertices; stage 1: the pairs of disks embedded (1, or more when the disk solver failed and
-  /// Eigen's sparse LU was tried, or when the weights folded the disks and Tutte's were tried; 0 with the multilevel
-  /// start, whose levels are in `Result::levels`).
+  /// Stage 1: the pairs of disks embedded (1, or more when the disk solver failed and Eigen's sparse LU was tried,
+  /// or when the weights folded the disks and Tutte's were tried; 0 with the multilevel start, whose levels are in
+  /// `Result::levels`). Stage 2: the sweeps over the vertices. Stage 3: the iterations of the `nonlinear_solver`
+  /// (Newton steps, or the local Newton's sweeps over the vertices).
   std::size_t iterations = 0;
   double seconds = 0.;         ///< Wall-clock time of the stage.
   double residual = -1.;       ///< The paper's `Res` at the end of the stage (-1 when not computed).
@@ -89,7 +90,14 @@ struct Result {
   bool uniform_initial_guess_fallback = false; ///< The disks were embedded with uniform weights instead.
   bool admissible_weights = false;      ///< The weights were made symmetric and positive (named parameter `admissible_weights`).
   std::size_t raised_weights = 0;       ///< Edges whose weight `admissible_weights` raised to 1% of the local mean.
-  std::size_t rejected_moves = 0;       ///< Vertex moves backtracked to preserve bijectivity.
+  /// Vertices that a sweep moving one vertex at a time left where they were, summed over the sweeps of stages 2
+  /// and 3: in projected Gauss-Seidel, a vertex whose move still folded one of its positive triangles after being
+  /// halved 12 times (none with `preserve_bijectivity` off); in the local Newton sweeps (`Nonlinear_solver::LOCAL_NEWTON`,
+  /// and those the global solver makes where none of its steps is accepted), also a vertex whose Newton step does
+  /// not lower the residuals of its one-ring, so near a solution most vertices count in every sweep. Moves that the
+  /// halving shortened, and the global solver's own steps (whose line search shortens all moves at once), do not
+  /// count; 0 with the multilevel start and when Newton's full steps from the initial guess converge.
+  std::size_t rejected_moves = 0;
   /// How far the continuation from Tutte's weights to the given ones got, in [0, 1] (1: all the way); -1 when it
   /// was not needed. Below 1, the balanced maps of the blended weights could not be followed further: with
   /// cotangent weights, typically because a triangle degenerates on the way.

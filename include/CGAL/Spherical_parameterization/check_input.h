@@ -205,6 +205,27 @@ inline Input_check check_mesh_arrays(const Mesh_arrays& mesh)
   return make_check(Error_code::OK);
 }
 
+// The mesh as arrays, its points read the same way by every public function: through the `vertex_point_map`
+// named parameter and the coordinate functors of `geom_traits`, converted to double (so that points of any
+// kernel, exact ones too, are accepted), stored at the indices of `vim`.
+template <typename TriangleMesh, typename VertexIndexMap, typename NamedParameters>
+Mesh_arrays read_mesh_arrays(const TriangleMesh& tm, VertexIndexMap vim, const NamedParameters& np)
+{
+  using CGAL::parameters::choose_parameter;
+  using CGAL::parameters::get_parameter;
+  auto vpm = choose_parameter(get_parameter(np, CGAL::internal_np::vertex_point), get_const_property_map(CGAL::vertex_point, tm));
+  using Geom_traits = typename CGAL::GetGeomTraits<TriangleMesh, NamedParameters>::type;
+  const Geom_traits gt = choose_parameter<Geom_traits>(get_parameter(np, CGAL::internal_np::geom_traits));
+  const auto compute_x = gt.compute_x_3_object();
+  const auto compute_y = gt.compute_y_3_object();
+  const auto compute_z = gt.compute_z_3_object();
+  return read_face_graph(tm, vpm, vim, [&](const auto& p, double& x, double& y, double& z) {
+    x = CGAL::to_double(compute_x(p));
+    y = CGAL::to_double(compute_y(p));
+    z = CGAL::to_double(compute_z(p));
+  });
+}
+
 } // namespace internal
 
 /// \ingroup PkgSphericalParameterizationRef
@@ -212,7 +233,7 @@ inline Input_check check_mesh_arrays(const Mesh_arrays& mesh)
 /// coordinates are finite, every vertex belongs to a face, it is closed, edge- and vertex-manifold, consistently
 /// oriented, connected and of genus 0. Returns the first defect found with its figures.
 ///
-/// \tparam TriangleMesh a model of `FaceListGraph`.
+/// \tparam TriangleMesh a model of `FaceListGraph` and `VertexListGraph`.
 /// \tparam NamedParameters a sequence of named parameters.
 /// \param tm the mesh, not modified.
 /// \param np optional named parameters among the ones listed below.
@@ -220,21 +241,31 @@ inline Input_check check_mesh_arrays(const Mesh_arrays& mesh)
 /// \cgalNamedParamsBegin
 ///   \cgalParamNBegin{vertex_point_map}
 ///     \cgalParamDescription{a property map associating points to the vertices of `tm`}
+///     \cgalParamType{a model of `ReadablePropertyMap` with `boost::graph_traits<TriangleMesh>::vertex_descriptor`
+///                    as key type and `Point_3` as value type}
 ///     \cgalParamDefault{`boost::get(CGAL::vertex_point, tm)`}
+///     \cgalParamExtra{If this parameter is omitted, an internal property map for `CGAL::vertex_point_t` must be
+///                     available in `TriangleMesh`.}
+///   \cgalParamNEnd
+///   \cgalParamNBegin{geom_traits}
+///     \cgalParamDescription{an instance of a geometric traits class, whose `Compute_x_3`, `Compute_y_3` and
+///                           `Compute_z_3` read the points (converted to `double` with `CGAL::to_double()`), as in
+///                           `spherical_parameterize()`}
+///     \cgalParamType{a model of `Kernel`}
+///     \cgalParamDefault{the kernel of the point type of `vertex_point_map` (`CGAL::Kernel_traits`)}
 ///   \cgalParamNEnd
 ///   \cgalParamNBegin{vertex_index_map}
-///     \cgalParamDescription{a property map associating to each vertex of `tm` a unique index between `0` and `num_vertices(tm) - 1`}
+///     \cgalParamDescription{a property map associating to each vertex of `tm` a unique index between `0` and
+///                           `num_vertices(tm) - 1`}
+///     \cgalParamType{a model of `ReadablePropertyMap` with `boost::graph_traits<TriangleMesh>::vertex_descriptor`
+///                    as key type and an integer type as value type}
 ///     \cgalParamDefault{an automatically indexed internal map}
 ///   \cgalParamNEnd
 /// \cgalNamedParamsEnd
 template <typename TriangleMesh, typename NamedParameters = CGAL::parameters::Default_named_parameters>
 Input_check check_input(const TriangleMesh& tm, const NamedParameters& np = CGAL::parameters::default_values())
 {
-  using CGAL::parameters::choose_parameter;
-  using CGAL::parameters::get_parameter;
-  auto vpm = choose_parameter(get_parameter(np, CGAL::internal_np::vertex_point), get_const_property_map(CGAL::vertex_point, tm));
-  auto vim = CGAL::get_initialized_vertex_index_map(tm, np);
-  return internal::check_mesh_arrays(internal::read_face_graph(tm, vpm, vim));
+  return internal::check_mesh_arrays(internal::read_mesh_arrays(tm, CGAL::get_initialized_vertex_index_map(tm, np), np));
 }
 
 /// \ingroup PkgSphericalParameterizationRef

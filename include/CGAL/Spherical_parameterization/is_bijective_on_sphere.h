@@ -42,15 +42,6 @@ std::vector<Vector3> read_sphere_map(const TriangleMesh& tm, VertexSphereMap vsm
   return x;
 }
 
-template <typename TriangleMesh, typename NamedParameters>
-Mesh_arrays read_connectivity(const TriangleMesh& tm, const NamedParameters& np)
-{
-  using CGAL::parameters::choose_parameter;
-  using CGAL::parameters::get_parameter;
-  auto vpm = choose_parameter(get_parameter(np, CGAL::internal_np::vertex_point), get_const_property_map(CGAL::vertex_point, tm));
-  return read_face_graph(tm, vpm, CGAL::get_initialized_vertex_index_map(tm, np));
-}
-
 } // namespace internal
 
 /// \ingroup PkgSphericalParameterizationRef
@@ -62,7 +53,7 @@ Mesh_arrays read_connectivity(const TriangleMesh& tm, const NamedParameters& np)
 /// coverings), and the signed spherical areas must add up to 4 pi (within pi; a check of the count, with the
 /// ill-conditioned areas of nearly degenerate triangles evaluated exactly).
 ///
-/// \tparam TriangleMesh a model of `FaceListGraph`.
+/// \tparam TriangleMesh a model of `FaceListGraph` and `VertexListGraph`.
 /// \tparam VertexSphereMap a model of `ReadablePropertyMap` from vertices to points with `x()`, `y()`, `z()`.
 /// \tparam NamedParameters a sequence of named parameters.
 /// \param tm the mesh.
@@ -70,16 +61,35 @@ Mesh_arrays read_connectivity(const TriangleMesh& tm, const NamedParameters& np)
 /// \param np optional named parameters among the ones listed below.
 ///
 /// \cgalNamedParamsBegin
-///   \cgalParamNBegin{vertex_point_map} \cgalParamDescription{the points of the mesh, read by the input checks}
-///     \cgalParamDefault{`boost::get(CGAL::vertex_point, tm)`} \cgalParamNEnd
-///   \cgalParamNBegin{vertex_index_map} \cgalParamDescription{indices `0..num_vertices(tm)-1` of the vertices}
-///     \cgalParamDefault{an automatically indexed internal map} \cgalParamNEnd
+///   \cgalParamNBegin{vertex_point_map}
+///     \cgalParamDescription{a property map associating points to the vertices of `tm` (only the input checks read
+///                           them: the orientations are those of `vsm`)}
+///     \cgalParamType{a model of `ReadablePropertyMap` with `boost::graph_traits<TriangleMesh>::vertex_descriptor`
+///                    as key type and `Point_3` as value type}
+///     \cgalParamDefault{`boost::get(CGAL::vertex_point, tm)`}
+///     \cgalParamExtra{If this parameter is omitted, an internal property map for `CGAL::vertex_point_t` must be
+///                     available in `TriangleMesh`.}
+///   \cgalParamNEnd
+///   \cgalParamNBegin{geom_traits}
+///     \cgalParamDescription{an instance of a geometric traits class, whose `Compute_x_3`, `Compute_y_3` and
+///                           `Compute_z_3` read the points of `vertex_point_map` (converted to `double` with
+///                           `CGAL::to_double()`), as in `spherical_parameterize()`}
+///     \cgalParamType{a model of `Kernel`}
+///     \cgalParamDefault{the kernel of the point type of `vertex_point_map` (`CGAL::Kernel_traits`)}
+///   \cgalParamNEnd
+///   \cgalParamNBegin{vertex_index_map}
+///     \cgalParamDescription{a property map associating to each vertex of `tm` a unique index between `0` and
+///                           `num_vertices(tm) - 1`}
+///     \cgalParamType{a model of `ReadablePropertyMap` with `boost::graph_traits<TriangleMesh>::vertex_descriptor`
+///                    as key type and an integer type as value type}
+///     \cgalParamDefault{an automatically indexed internal map}
+///   \cgalParamNEnd
 /// \cgalNamedParamsEnd
 template <typename TriangleMesh, typename VertexSphereMap, typename NamedParameters = CGAL::parameters::Default_named_parameters>
 Sphere_map_certificate certify_sphere_map(const TriangleMesh& tm, VertexSphereMap vsm,
                                           const NamedParameters& np = CGAL::parameters::default_values())
 {
-  const internal::Mesh_arrays mesh = internal::read_connectivity(tm, np);
+  const internal::Mesh_arrays mesh = internal::read_mesh_arrays(tm, CGAL::get_initialized_vertex_index_map(tm, np), np);
   std::vector<internal::Vector3> x = internal::read_sphere_map(tm, vsm, np);
   Sphere_map_certificate certificate;
   certificate.number_of_faces = mesh.polygons.size();
@@ -103,7 +113,7 @@ Sphere_map_certificate certify_sphere_map(const TriangleMesh& tm, VertexSphereMa
 /// `true` iff `certify_sphere_map(tm, vsm, np).bijective`; same parameters as `certify_sphere_map()`.
 /// \param tm the mesh.
 /// \param vsm the map to certify.
-/// \param np optional named parameters: `vertex_point_map`, `vertex_index_map`.
+/// \param np optional named parameters: `vertex_point_map`, `geom_traits`, `vertex_index_map`.
 template <typename TriangleMesh, typename VertexSphereMap, typename NamedParameters = CGAL::parameters::Default_named_parameters>
 bool is_bijective_on_sphere(const TriangleMesh& tm, VertexSphereMap vsm, const NamedParameters& np = CGAL::parameters::default_values())
 {
@@ -122,7 +132,7 @@ struct Spherical_distortion {
 /// \ingroup PkgSphericalParameterizationRef
 /// Measures the angle and area distortion of the map `vsm` of `tm`.
 ///
-/// \tparam TriangleMesh a model of `FaceListGraph`.
+/// \tparam TriangleMesh a model of `FaceListGraph` and `VertexListGraph`.
 /// \tparam VertexSphereMap a model of `ReadablePropertyMap` from vertices to points with `x()`, `y()`, `z()`.
 /// \tparam NamedParameters a sequence of named parameters.
 /// \param tm the mesh.
@@ -130,17 +140,36 @@ struct Spherical_distortion {
 /// \param np optional named parameters among the ones listed below.
 ///
 /// \cgalNamedParamsBegin
-///   \cgalParamNBegin{vertex_point_map} \cgalParamDescription{the points of the mesh}
-///     \cgalParamDefault{`boost::get(CGAL::vertex_point, tm)`} \cgalParamNEnd
-///   \cgalParamNBegin{vertex_index_map} \cgalParamDescription{indices `0..num_vertices(tm)-1` of the vertices}
-///     \cgalParamDefault{an automatically indexed internal map} \cgalParamNEnd
+///   \cgalParamNBegin{vertex_point_map}
+///     \cgalParamDescription{a property map associating points to the vertices of `tm` (the angles and areas of the
+///                           mesh)}
+///     \cgalParamType{a model of `ReadablePropertyMap` with `boost::graph_traits<TriangleMesh>::vertex_descriptor`
+///                    as key type and `Point_3` as value type}
+///     \cgalParamDefault{`boost::get(CGAL::vertex_point, tm)`}
+///     \cgalParamExtra{If this parameter is omitted, an internal property map for `CGAL::vertex_point_t` must be
+///                     available in `TriangleMesh`.}
+///   \cgalParamNEnd
+///   \cgalParamNBegin{geom_traits}
+///     \cgalParamDescription{an instance of a geometric traits class, whose `Compute_x_3`, `Compute_y_3` and
+///                           `Compute_z_3` read the points of `vertex_point_map` (converted to `double` with
+///                           `CGAL::to_double()`), as in `spherical_parameterize()`}
+///     \cgalParamType{a model of `Kernel`}
+///     \cgalParamDefault{the kernel of the point type of `vertex_point_map` (`CGAL::Kernel_traits`)}
+///   \cgalParamNEnd
+///   \cgalParamNBegin{vertex_index_map}
+///     \cgalParamDescription{a property map associating to each vertex of `tm` a unique index between `0` and
+///                           `num_vertices(tm) - 1`}
+///     \cgalParamType{a model of `ReadablePropertyMap` with `boost::graph_traits<TriangleMesh>::vertex_descriptor`
+///                    as key type and an integer type as value type}
+///     \cgalParamDefault{an automatically indexed internal map}
+///   \cgalParamNEnd
 /// \cgalNamedParamsEnd
 template <typename TriangleMesh, typename VertexSphereMap, typename NamedParameters = CGAL::parameters::Default_named_parameters>
 Spherical_distortion measure_spherical_distortion(const TriangleMesh& tm, VertexSphereMap vsm,
                                                   const NamedParameters& np = CGAL::parameters::default_values())
 {
   using internal::Vector3;
-  const internal::Mesh_arrays mesh = internal::read_connectivity(tm, np);
+  const internal::Mesh_arrays mesh = internal::read_mesh_arrays(tm, CGAL::get_initialized_vertex_index_map(tm, np), np);
   const std::vector<Vector3> x = internal::read_sphere_map(tm, vsm, np);
   auto angle = [](const Vector3& a, const Vector3& b) { return std::atan2(internal::length(internal::cross(a, b)), internal::dot(a, b)); };
   auto area = [](const Vector3& a, const Vector3& b, const Vector3& c) { return 0.5 * internal::length(internal::cross(b - a, c - a)); };

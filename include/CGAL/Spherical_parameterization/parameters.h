@@ -51,11 +51,14 @@ enum class Convergence_test {
 
 /// \ingroup PkgSphericalParameterizationRef
 /// What the `progress_callback` named parameter receives: once after stage 1 (the two-disk initial guess; with the
-/// multilevel start, after the coarsest level's), then after every iteration of stages 2 and 3 (and, inside an
-/// iteration that lasts, the last report again with its time updated, at most every half second).
+/// multilevel start, after the coarsest level's, and again after a finer level's own two-disk guess where the level
+/// below it failed), then after every iteration of stages 2 and 3 that gave a new iterate, on every level (and,
+/// inside an iteration that lasts, the last report again with its time updated, at most every half second).
 struct Progress {
   const char* stage = "";          ///< "initial guess", "gauss-seidel", "global newton" or "local newton".
-  std::size_t iteration = 0;       ///< Iterations of that stage so far (0 for the initial guess).
+  /// Iterations so far of the current phase (0 for the initial guess): the count starts again with each phase of
+  /// stage 3 (such as Newton's full steps, then the bijectivity-preserving ones) and on each level.
+  std::size_t iteration = 0;
   double residual = -1.;           ///< The paper's `Res` now.
   double max_imbalance = -1.;      ///< The largest imbalance `e_i` (see `Convergence_test`) at the end of stage 1; -1 in the per-iteration reports.
   std::size_t non_positive_faces = 0; ///< Spherical triangles not positively oriented now.
@@ -116,7 +119,7 @@ CGAL_SPHERICAL_PARAMETERIZATION_NAMED_PARAMETER(convergence_test)
 CGAL_SPHERICAL_PARAMETERIZATION_NAMED_PARAMETER(max_gauss_seidel_sweeps)
 /// Iteration cap of stage 3 (sweeps of the nonlinear solver, default 200000).
 CGAL_SPHERICAL_PARAMETERIZATION_NAMED_PARAMETER(max_newton_sweeps)
-/// Wall-clock budget of stages 2 and 3 in seconds (default: unlimited).
+/// Wall-clock budget of the whole call in seconds (default: unlimited); stage 1 always runs to its end.
 CGAL_SPHERICAL_PARAMETERIZATION_NAMED_PARAMETER(max_seconds)
 /// Backtrack any vertex move that would make one of its spherical triangles non-positive (default `true`).
 CGAL_SPHERICAL_PARAMETERIZATION_NAMED_PARAMETER(preserve_bijectivity)

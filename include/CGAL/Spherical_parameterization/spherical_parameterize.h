@@ -54,7 +54,8 @@ using Sparse_LU_disk_solver_traits = internal::Sparse_LU_solver_traits;
 ///
 /// \tparam ConcurrencyTag `CGAL::Sequential_tag`, `CGAL::Parallel_tag` (needs TBB: the two disks of stage 1 are
 ///         embedded at the same time) or `CGAL::Parallel_if_available_tag`. The result does not depend on it.
-/// \tparam TriangleMesh a model of `FaceListGraph`.
+/// \tparam TriangleMesh a model of `FaceListGraph` and `VertexListGraph`; also of `HalfedgeListGraph` when
+///         `halfedge_weight_map` is given (its halfedges are then iterated).
 /// \tparam VertexSphereMap a model of `WritablePropertyMap` from vertices to a `Point_3` constructible from three doubles.
 /// \tparam NamedParameters a sequence of named parameters (the package's own, from
 ///         `CGAL::Spherical_parameterization::parameters`, and CGAL's, joined by `parameters::combine()`).
@@ -64,65 +65,127 @@ using Sparse_LU_disk_solver_traits = internal::Sparse_LU_solver_traits;
 /// \param np optional named parameters among the ones listed below.
 ///
 /// \cgalNamedParamsBegin
-///   \cgalParamNBegin{vertex_point_map} \cgalParamDescription{the points of the vertices}
-///     \cgalParamType{a model of `ReadablePropertyMap` from vertices to points}
-///     \cgalParamDefault{`boost::get(CGAL::vertex_point, tm)`} \cgalParamNEnd
-///   \cgalParamNBegin{geom_traits} \cgalParamDescription{its `Compute_x_3`, `Compute_y_3` and `Compute_z_3` read the
-///     points (converted to `double` with `CGAL::to_double()`), so exact kernels are accepted}
+///   \cgalParamNBegin{vertex_point_map}
+///     \cgalParamDescription{a property map associating points to the vertices of `tm`}
+///     \cgalParamType{a model of `ReadablePropertyMap` with `boost::graph_traits<TriangleMesh>::vertex_descriptor`
+///                    as key type and `Point_3` as value type}
+///     \cgalParamDefault{`boost::get(CGAL::vertex_point, tm)`}
+///     \cgalParamExtra{If this parameter is omitted, an internal property map for `CGAL::vertex_point_t` must be
+///                     available in `TriangleMesh`.}
+///   \cgalParamNEnd
+///   \cgalParamNBegin{geom_traits}
+///     \cgalParamDescription{an instance of a geometric traits class, whose `Compute_x_3`, `Compute_y_3` and
+///                           `Compute_z_3` read the points (converted to `double` with `CGAL::to_double()`), so that
+///                           exact kernels are accepted}
 ///     \cgalParamType{a model of `Kernel`}
-///     \cgalParamDefault{the kernel of the point type of `vertex_point_map`} \cgalParamNEnd
-///   \cgalParamNBegin{vertex_index_map} \cgalParamDescription{indices `0..num_vertices(tm)-1` of the vertices}
-///     \cgalParamType{a model of `ReadablePropertyMap` from vertices to an integer type}
-///     \cgalParamDefault{an automatically indexed internal map} \cgalParamNEnd
-///   \cgalParamNBegin{weighting} \cgalParamDescription{the weights `w_ij` of the balance equations}
+///     \cgalParamDefault{the kernel of the point type of `vertex_point_map` (`CGAL::Kernel_traits`)}
+///   \cgalParamNEnd
+///   \cgalParamNBegin{vertex_index_map}
+///     \cgalParamDescription{a property map associating to each vertex of `tm` a unique index between `0` and
+///                           `num_vertices(tm) - 1`}
+///     \cgalParamType{a model of `ReadablePropertyMap` with `boost::graph_traits<TriangleMesh>::vertex_descriptor`
+///                    as key type and an integer type as value type}
+///     \cgalParamDefault{an automatically indexed internal map}
+///   \cgalParamNEnd
+///   \cgalParamNBegin{weighting}
+///     \cgalParamDescription{the weights `w_ij` of the balance equations}
 ///     \cgalParamType{`Weighting`}
-///     \cgalParamDefault{`Weighting::UNIFORM`, or `Weighting::USER_MAP` when `halfedge_weight_map` is given} \cgalParamNEnd
-///   \cgalParamNBegin{halfedge_weight_map} \cgalParamDescription{the weight of `source(h)` in the equation of
-///     `target(h)`; the weights of a vertex must be finite with a positive sum}
-///     \cgalParamType{a model of `ReadablePropertyMap` from halfedges to a type convertible to `double`}
-///     \cgalParamDefault{none} \cgalParamNEnd
-///   \cgalParamNBegin{admissible_weights} \cgalParamDescription{solve with the closest symmetric positive weights
-///     (`w_ij`, `w_ji` replaced by their mean, weights below 1% of the local mean raised to it), for which the theory
-///     guarantees a bijective solution on inscribable meshes; `Result::raised_weights` counts the edges raised}
-///     \cgalParamType{`bool`} \cgalParamDefault{`false`} \cgalParamNEnd
-///   \cgalParamNBegin{multilevel} \cgalParamDescription{on meshes of 20,000 vertices or more with uniform weights
-///     and the global solver, start from a coarser mesh (half-edge collapses to a quarter of the vertices, recursively)
-///     solved first, its map carried back, instead of the paper's two-disk guess on the mesh itself (which the
-///     coarsest level uses, and which is the fallback); `Result::levels` reports the levels}
-///     \cgalParamType{`bool`} \cgalParamDefault{`true`} \cgalParamNEnd
-///   \cgalParamNBegin{tolerance} \cgalParamDescription{stop when every vertex's imbalance `e_i` is at most this value
-///     (or its rounding floor, where larger); with `Convergence_test::PAPER_RESIDUAL`, when `Res` is below it}
-///     \cgalParamType{`double`} \cgalParamDefault{`1e-6`} \cgalParamNEnd
-///   \cgalParamNBegin{convergence_test} \cgalParamDescription{the stopping test of the iterations}
-///     \cgalParamType{`Convergence_test`} \cgalParamDefault{`Convergence_test::IMBALANCE`} \cgalParamNEnd
-///   \cgalParamNBegin{max_gauss_seidel_sweeps} \cgalParamDescription{iteration cap of stage 2}
-///     \cgalParamType{`std::size_t`} \cgalParamDefault{1000} \cgalParamNEnd
-///   \cgalParamNBegin{max_newton_sweeps} \cgalParamDescription{iteration cap of stage 3}
-///     \cgalParamType{`std::size_t`} \cgalParamDefault{200000} \cgalParamNEnd
-///   \cgalParamNBegin{max_seconds} \cgalParamDescription{time budget of the whole call (input checks, stage 1, stages 2 and 3), in seconds; a negative value means none. Stage 1 always runs to its end (every returned map needs it); the iterations check the budget at every iteration and between the parts of a Newton step, so the call ends at most one such part past it (see the manual)}
-///     \cgalParamType{`double`} \cgalParamDefault{unlimited} \cgalParamNEnd
-///   \cgalParamNBegin{preserve_bijectivity} \cgalParamDescription{backtrack moves that would fold a triangle}
-///     \cgalParamType{`bool`} \cgalParamDefault{`true`} \cgalParamNEnd
-///   \cgalParamNBegin{nonlinear_solver} \cgalParamDescription{the solver of stage 3}
-///     \cgalParamType{`Nonlinear_solver`} \cgalParamDefault{`Nonlinear_solver::GLOBAL_NEWTON`} \cgalParamNEnd
-///   \cgalParamNBegin{metis_seed} \cgalParamDescription{seed of METIS: the same seed gives bitwise identical output}
-///     \cgalParamType{`int`} \cgalParamDefault{0} \cgalParamNEnd
-///   \cgalParamNBegin{METIS_options} \cgalParamDescription{the `METIS_NOPTIONS` options of `METIS_ComputeVertexSeparator`
-///     (CGAL's tag); overrides `metis_seed`}
+///     \cgalParamDefault{`Weighting::UNIFORM`, or `Weighting::USER_MAP` when `halfedge_weight_map` is given}
+///   \cgalParamNEnd
+///   \cgalParamNBegin{halfedge_weight_map}
+///     \cgalParamDescription{the weight of `source(h)` in the equation of `target(h)`; the weights of a vertex must
+///                           be finite with a positive sum}
+///     \cgalParamType{a model of `ReadablePropertyMap` with `boost::graph_traits<TriangleMesh>::halfedge_descriptor`
+///                    as key type and a value type convertible to `double`}
+///     \cgalParamDefault{none}
+///     \cgalParamExtra{The halfedges of `tm` are iterated: `TriangleMesh` must then be a model of
+///                     `HalfedgeListGraph`.}
+///   \cgalParamNEnd
+///   \cgalParamNBegin{admissible_weights}
+///     \cgalParamDescription{solve with the closest symmetric positive weights (`w_ij`, `w_ji` replaced by their
+///                           mean, weights below 1% of the local mean raised to it), for which the theory guarantees a
+///                           bijective solution on inscribable meshes; `Result::raised_weights` counts the edges raised}
+///     \cgalParamType{`bool`}
+///     \cgalParamDefault{`false`}
+///   \cgalParamNEnd
+///   \cgalParamNBegin{multilevel}
+///     \cgalParamDescription{on meshes of 20,000 vertices or more with uniform weights and the global solver, start
+///                           from a coarser mesh (half-edge collapses to a quarter of the vertices, recursively) solved
+///                           first, its map carried back, instead of the paper's two-disk guess on the mesh itself
+///                           (which the coarsest level uses, and which is the fallback); `Result::levels` reports the
+///                           levels}
+///     \cgalParamType{`bool`}
+///     \cgalParamDefault{`true`}
+///   \cgalParamNEnd
+///   \cgalParamNBegin{tolerance}
+///     \cgalParamDescription{stop when every vertex's imbalance `e_i` is at most this value (or its rounding floor,
+///                           where larger); with `Convergence_test::PAPER_RESIDUAL`, when `Res` is below it}
+///     \cgalParamType{`double`}
+///     \cgalParamDefault{`1e-6`}
+///   \cgalParamNEnd
+///   \cgalParamNBegin{convergence_test}
+///     \cgalParamDescription{the stopping test of the iterations}
+///     \cgalParamType{`Convergence_test`}
+///     \cgalParamDefault{`Convergence_test::IMBALANCE`}
+///   \cgalParamNEnd
+///   \cgalParamNBegin{max_gauss_seidel_sweeps}
+///     \cgalParamDescription{iteration cap of stage 2}
+///     \cgalParamType{`std::size_t`}
+///     \cgalParamDefault{1000}
+///   \cgalParamNEnd
+///   \cgalParamNBegin{max_newton_sweeps}
+///     \cgalParamDescription{iteration cap of stage 3}
+///     \cgalParamType{`std::size_t`}
+///     \cgalParamDefault{200000}
+///   \cgalParamNEnd
+///   \cgalParamNBegin{max_seconds}
+///     \cgalParamDescription{time budget of the whole call (input checks, stage 1, stages 2 and 3), in seconds; a
+///                           negative value means none. Stage 1 always runs to its end (every returned map needs it);
+///                           the iterations check the budget at every iteration and between the parts of a Newton
+///                           step, so the call ends at most one such part past it (see the manual)}
+///     \cgalParamType{`double`}
+///     \cgalParamDefault{unlimited}
+///   \cgalParamNEnd
+///   \cgalParamNBegin{preserve_bijectivity}
+///     \cgalParamDescription{backtrack moves that would fold a triangle}
+///     \cgalParamType{`bool`}
+///     \cgalParamDefault{`true`}
+///   \cgalParamNEnd
+///   \cgalParamNBegin{nonlinear_solver}
+///     \cgalParamDescription{the solver of stage 3}
+///     \cgalParamType{`Nonlinear_solver`}
+///     \cgalParamDefault{`Nonlinear_solver::GLOBAL_NEWTON`}
+///   \cgalParamNEnd
+///   \cgalParamNBegin{metis_seed}
+///     \cgalParamDescription{seed of METIS: the same seed gives bitwise identical output}
+///     \cgalParamType{`int`}
+///     \cgalParamDefault{0}
+///   \cgalParamNEnd
+///   \cgalParamNBegin{METIS_options}
+///     \cgalParamDescription{the `METIS_NOPTIONS` options of `METIS_ComputeVertexSeparator` (CGAL's tag); overrides
+///                           `metis_seed`}
 ///     \cgalParamType{`idx_t*`, or a pointer to an array of `METIS_NOPTIONS` `idx_t`}
-///     \cgalParamDefault{METIS' defaults with `metis_seed`} \cgalParamNEnd
-///   \cgalParamNBegin{sparse_linear_solver} \cgalParamDescription{the linear solver of the disk stage; if it fails,
-///     Eigen's sparse LU is tried before `Error_code::DISK_EMBEDDING_FAILED`. With `CGAL::Parallel_tag` each disk
-///     is embedded with its own `independent_copy()` of it}
+///     \cgalParamDefault{METIS' defaults with `metis_seed`}
+///   \cgalParamNEnd
+///   \cgalParamNBegin{sparse_linear_solver}
+///     \cgalParamDescription{the linear solver of the disk stage; if it fails, Eigen's sparse LU is tried before
+///                           `Error_code::DISK_EMBEDDING_FAILED`. With `CGAL::Parallel_tag` each disk is embedded
+///                           with its own `independent_copy()` of it}
 ///     \cgalParamType{a model of `SphericalParameterizationDiskSolverTraits`}
-///     \cgalParamDefault{`AMG_solver_traits` (`Default_disk_solver_traits`)} \cgalParamNEnd
-///   \cgalParamNBegin{progress_callback} \cgalParamDescription{called after stage 1 and after every iteration;
-///     returning `false` cancels (status `Error_code::CANCELLED`, the iterate reached is written: in stage 3 the best one)}
+///     \cgalParamDefault{`AMG_solver_traits` (`Default_disk_solver_traits`)}
+///   \cgalParamNEnd
+///   \cgalParamNBegin{progress_callback}
+///     \cgalParamDescription{called after stage 1 and after every iteration (see `Progress`); returning `false`
+///                           cancels (status `Error_code::CANCELLED`, the iterate reached is written: in stage 3 the
+///                           best one)}
 ///     \cgalParamType{a model of `SphericalParameterizationProgressCallback`}
-///     \cgalParamDefault{none} \cgalParamNEnd
-///   \cgalParamNBegin{verbose} \cgalParamDescription{print the figures of each stage to `std::cerr`, and the progress
-///     at most once a second}
-///     \cgalParamType{`bool`} \cgalParamDefault{`false`} \cgalParamNEnd
+///     \cgalParamDefault{none}
+///   \cgalParamNEnd
+///   \cgalParamNBegin{verbose}
+///     \cgalParamDescription{print the figures of each stage to `std::cerr`, and the progress at most once a second}
+///     \cgalParamType{`bool`}
+///     \cgalParamDefault{`false`}
+///   \cgalParamNEnd
 /// \cgalNamedParamsEnd
 ///
 /// \return a `Result` with the status, the residuals, the exact flip count and the figures of each stage.
@@ -142,20 +205,8 @@ Result spherical_parameterize(const TriangleMesh& tm, VertexSphereMap vsm,
   using CGAL::parameters::is_default_parameter;
 
   internal::Stopwatch clock;
-  auto vpm = choose_parameter(get_parameter(np, CGAL::internal_np::vertex_point), get_const_property_map(CGAL::vertex_point, tm));
   auto vim = CGAL::get_initialized_vertex_index_map(tm, np);
-
-  // The geometric traits read the coordinates, so that any kernel's points (e.g. exact ones) are accepted.
-  using Geom_traits = typename CGAL::GetGeomTraits<TriangleMesh, NamedParameters>::type;
-  const Geom_traits gt = choose_parameter<Geom_traits>(get_parameter(np, CGAL::internal_np::geom_traits));
-  const auto compute_x = gt.compute_x_3_object();
-  const auto compute_y = gt.compute_y_3_object();
-  const auto compute_z = gt.compute_z_3_object();
-  internal::Mesh_arrays mesh = internal::read_face_graph(tm, vpm, vim, [&](const auto& p, double& x, double& y, double& z) {
-    x = CGAL::to_double(compute_x(p));
-    y = CGAL::to_double(compute_y(p));
-    z = CGAL::to_double(compute_z(p));
-  });
+  internal::Mesh_arrays mesh = internal::read_mesh_arrays(tm, vim, np);
   const Input_check check = internal::check_mesh_arrays(mesh);
   if(!check) {
     Result result;

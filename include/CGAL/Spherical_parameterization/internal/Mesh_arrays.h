@@ -68,12 +68,11 @@ inline std::uint64_t spread_bits_by_three(std::uint64_t v)
   return v;
 }
 
-// Renumbers the vertices of a triangle mesh along a Morton (Z-order) curve through their points and sorts the
-// faces by their first vertex, so that the vertices of a face, and neighbouring faces, sit close together in
-// memory. Every later stage (disk systems and AMG, sphere iterations, certificate) walks these arrays; in the
-// input's order they can be far apart (subdivided or shuffled files): on Loop subdivisions of armadillo this
-// order made the whole map about 20% faster, and a shuffled file runs as fast as a well-ordered one. The keys
-// are integers, the order is deterministic. `input_index` keeps the way back.
+// Renumbers the vertices of a triangle mesh along a Morton (Z-order) curve through their points and sorts the faces
+// by their first vertex, so that the vertices of a face, and neighbouring faces, sit close together in memory. Every
+// later stage (disk systems and AMG, sphere iterations, certificate) walks these arrays; in the input's order they
+// can be far apart (subdivided or shuffled files), which costs time on large meshes (the manual's Performance
+// section has the figures). The keys are integers, the order is deterministic. `input_index` keeps the way back.
 //
 // Only meshes of `minimum_vertices` or more are renumbered: below, the arrays fit in the caches anyway, and a new
 // order only changes the iterates (METIS' separator, the Gauss-Seidel order), and with them the outcome of the

@@ -59,8 +59,8 @@ struct Pipeline_options {
   bool parallel = false;  // CGAL::Parallel_tag with TBB
   bool multilevel = true;  // the multilevel start where it applies (multilevel_applies)
   // A coarser level of the multilevel start: only Newton's full steps are tried. When they fail, the finer level
-  // starts from its own two disks, so the fallbacks of stages 2 and 3 would be spent on a mere start (measured on
-  // Loop subdivisions of CGAL's man and bull: 35 s and 17 s lost on a coarse level that did not converge).
+  // starts from its own two disks, so the fallbacks of stages 2 and 3 would be spent on a mere start (the manual's
+  // Method section has what that cost).
   bool coarse_level = false;
   Iteration_options iterations;   // its max_seconds counts from `call_clock`'s start
   Stopwatch call_clock;           // started when the user's call began (input checks and stage 1 count too)
@@ -147,9 +147,8 @@ private:
   // solved by the whole pipeline (itself multilevel while it is large enough), its map carried back (prolong()),
   // smoothed by a few Gauss-Seidel sweeps (the vertices carried back sit where their ring was positive, not where
   // they balance), then Newton's full steps on this mesh, the boosts solved as outer unknowns (Boost_aim::ROOT).
-  // From the two-disk guess the number of Newton steps grows with the mesh (armadillo: 7, its Loop subdivisions: 14
-  // to 25); from the level below it is 3 to 6 on the meshes measured (real meshes of 24k to 164k vertices, armadillo
-  // Loop x2 and x3), where the boosts balanced only upwards and taken from Newton's step took 4 to 27.
+  // From the two-disk guess the number of Newton steps grows with the mesh; from the level below it stays a few
+  // (the manual's Method and Performance sections have the counts).
   // Returns true when this mesh's map converged (or the time or a cancel stopped it); otherwise `x` is unspecified
   // and the caller starts again with the paper's stage 1.
 
@@ -320,7 +319,6 @@ private:
     const bool try_direct_newton = !cancelled_ && !no_balanced_solution_ && system_.symmetric &&
                                    options_.nonlinear_solver == Nonlinear_solver::GLOBAL_NEWTON && iteration_options_.max_newton_sweeps > 0;
     if(try_direct_newton) {
-      // Measured on the 66 meshes: 8 need the second attempt (on the imbalances), all small.
       direct_newton = full_newton_steps(state, iteration_options_, iterations_clock);
       if(options_.coarse_level && !direct_newton.converged) {
         iteration_options_.max_gauss_seidel_sweeps = 0;

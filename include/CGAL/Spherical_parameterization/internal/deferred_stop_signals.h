@@ -1,9 +1,9 @@
 // METIS (through its GKlib) installs its own handler for SIGTERM while one of its functions runs and turns the
 // signal into an error return, then puts the previous handler back: a job scheduler's SIGTERM (Slurm, systemd,
-// `timeout`) that arrives during a METIS call is lost, and the process runs on. Measured before this guard: mean-value
-// runs under `timeout 30` went on for 6 and 10 minutes. So the signals that ask a process to stop are blocked in the
-// calling thread around every METIS call; one that arrives meanwhile stays pending and reaches the application's own
-// handler (or the default action) as soon as the call returns.
+// `timeout`) that arrives during a METIS call is lost, and the process runs on, for minutes where METIS is called at
+// every Newton step. So the signals that ask a process to stop are blocked in the calling thread around every METIS
+// call; one that arrives meanwhile stays pending and reaches the application's own handler (or the default action)
+// as soon as the call returns.
 
 #ifndef CGAL_SPHERICAL_PARAMETERIZATION_INTERNAL_DEFERRED_STOP_SIGNALS_H
 #define CGAL_SPHERICAL_PARAMETERIZATION_INTERNAL_DEFERRED_STOP_SIGNALS_H

@@ -169,15 +169,15 @@ inline void remove_rotation_and_boost(const std::vector<Vector3>& x, std::vector
   for(std::size_t i = 0; i < x.size(); ++i) d[i] -= cross(rotation, x[i]) + (boost - dot(boost, x[i]) * x[i]);
 }
 
-// What the boosts are balanced to. E is a maximum along the boosts at the balanced map, but not at every iterate
-// on the way: on a map carried back from a coarser level the boosts' 3x3 Hessian often has a positive eigenvalue,
-// and steps restricted to going up E (the gradient where Newton's step does not) crawl away from the critical
-// point; the Newton steps on the whole map that follow then fold and wander. Solving g(c) = 0 as equations
-// (ROOT, with the boost part of Newton's step dropped: mobius_newton) suits such a map, close to the solution:
-// measured on 8 meshes of 32k to 416k vertices, the Newton steps per multilevel level above the coarsest fell
-// from 4-27 to 3-6. Far from the solution (the two-disk guess) the root of g that Newton heads for can be the
-// collapse at infinity, where g vanishes like exp(-2s) along a boost (Newton's steps keep the length 1/2 there):
-// CGAL's u.off and openscad1580 collapsed. There the steps go up E (MAXIMUM), the collapse being E's minimum.
+// What the boosts are balanced to. E is a maximum along the boosts at the balanced map, but not at every iterate on
+// the way: on a map carried back from a coarser level the boosts' 3x3 Hessian often has a positive eigenvalue, and
+// steps restricted to going up E (the gradient where Newton's step does not) crawl away from the critical point; the
+// Newton steps on the whole map that follow then fold and wander. Solving g(c) = 0 as equations (ROOT, with the
+// boost part of Newton's step dropped: mobius_newton) suits such a map, close to the solution (fewer Newton steps
+// per level: the manual's Method section). Far from the solution (the two-disk guess) the root of g that Newton
+// heads for can be the collapse at infinity, where g vanishes like exp(-2s) along a boost (Newton's steps keep the
+// length 1/2 there): CGAL's u.off and openscad1580 collapsed. There the steps go up E (MAXIMUM), the collapse being
+// E's minimum.
 enum class Boost_aim { MAXIMUM, ROOT };
 
 // Balances the boosts: Newton's method on the three equations g(c) = 0 of the boost parameters c (g =
