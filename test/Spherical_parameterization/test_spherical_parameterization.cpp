@@ -6,6 +6,7 @@
 #include <CGAL/Spherical_parameterization/is_bijective_on_sphere.h>
 #include <CGAL/Spherical_parameterization/spherical_parameterize.h>
 #include <CGAL/Spherical_parameterization/internal/constrained_balance.h>
+#include <CGAL/Spherical_parameterization/internal/imbalance_least_squares.h>
 
 #include <CGAL/Exact_predicates_exact_constructions_kernel.h>
 #include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
@@ -823,19 +824,41 @@ TEST(GlobalNewton, ContinuationFromTutteWeights)
 // differences of their gradient along a random tangent direction: cotangent weights, on CGAL's sphere966.off projected
 // radially (well-shaped triangles, so that every term of the barrier's Hessian, the curvature term included, weighs
 // in) and at the two-disk guess of triceratops (triangles of every size and shape).
+namespace {
+
+// The maps the derivative tests linearize at: sphere966 projected radially from its centroid (a smooth, nearly
+// balanced map), or the two-disk initial guess (thin triangles, far from balanced).
+std::vector<SPI::Vector3> derivative_test_map(const std::string& name, const SPI::Mesh_arrays& arrays, const SPI::Sphere_system& system)
+{
+  std::vector<SPI::Vector3> x;
+  if(name != "sphere966.off") return initial_sphere_of(arrays, system);
+  SPI::Vector3 centre;
+  for(const SPI::Vector3& p : arrays.points) centre += p * (1. / static_cast<double>(arrays.points.size()));
+  for(const SPI::Vector3& p : arrays.points) x.push_back((p - centre) * (1. / SPI::length(p - centre)));
+  return x;
+}
+
+// x moved by h times the tangent field with coordinates d in the frames (t1, t2), back onto the sphere.
+std::vector<SPI::Vector3> moved_along(const std::vector<SPI::Vector3>& x, const std::vector<SPI::Vector3>& t1,
+                                      const std::vector<SPI::Vector3>& t2, const Eigen::VectorXd& d, double h)
+{
+  std::vector<SPI::Vector3> y(x.size());
+  for(std::size_t i = 0; i < x.size(); ++i) {
+    const SPI::Vector3 v = d[static_cast<Eigen::Index>(2 * i)] * t1[i] + d[static_cast<Eigen::Index>(2 * i + 1)] * t2[i];
+    const SPI::Vector3 p = x[i] + h * v;
+    y[i] = p * (1. / SPI::length(p));
+  }
+  return y;
+}
+
+} // namespace
+
 TEST(ConstrainedBalance, HessianMatchesFiniteDifferences)
 {
   for(const std::string name : {"sphere966.off", "triceratops.off"}) {
     const SPI::Mesh_arrays arrays = arrays_of(read_mesh(cgal_data + "/" + name));
     const SPI::Sphere_system system = system_of(arrays, SP::Weighting::COTANGENT);
-    std::vector<SPI::Vector3> x;
-    if(name == "sphere966.off") {
-      SPI::Vector3 centre;
-      for(const SPI::Vector3& p : arrays.points) centre += p * (1. / static_cast<double>(arrays.points.size()));
-      for(const SPI::Vector3& p : arrays.points) x.push_back((p - centre) * (1. / SPI::length(p - centre)));
-    } else {
-      x = initial_sphere_of(arrays, system);
-    }
+    const std::vector<SPI::Vector3> x = derivative_test_map(name, arrays, system);
     ASSERT_EQ(SPI::certify(system.triangles, x).flipped_faces, 0u) << name;
     SPI::Constrained_balance balance(system);
     balance.set_face_scales(x);
@@ -853,13 +876,7 @@ TEST(ConstrainedBalance, HessianMatchesFiniteDifferences)
       for(Eigen::Index k = 0; k < d.size(); ++k) d[k] = normal(random);
       const Eigen::VectorXd product = hessian * d;
       const double h = 1e-11;  // below the smallest triangles of the guess, whose barrier terms are the least linear
-      std::vector<SPI::Vector3> plus(n), minus(n);
-      for(std::size_t i = 0; i < n; ++i) {
-        const SPI::Vector3 v = d[static_cast<Eigen::Index>(2 * i)] * t1[i] + d[static_cast<Eigen::Index>(2 * i + 1)] * t2[i];
-        const SPI::Vector3 p = x[i] + h * v, m = x[i] - h * v;
-        plus[i] = p * (1. / SPI::length(p));
-        minus[i] = m * (1. / SPI::length(m));
-      }
+      const std::vector<SPI::Vector3> plus = moved_along(x, t1, t2, d, h), minus = moved_along(x, t1, t2, d, -h);
       ASSERT_TRUE(balance.gradient(plus, mu, g_plus, l));
       ASSERT_TRUE(balance.gradient(minus, mu, g_minus, l));
       double error = 0., norm = 0.;
@@ -872,6 +889,65 @@ TEST(ConstrainedBalance, HessianMatchesFiniteDifferences)
                 product[static_cast<Eigen::Index>(2 * i + 1)] * product[static_cast<Eigen::Index>(2 * i + 1)];
       }
       EXPECT_LT(std::sqrt(error / norm), 1e-4) << name << ", mu " << mu;
+    }
+  }
+}
+
+// The Gauss-Newton steps of imbalance_least_squares.h rest on the Jacobian of r_i = F_i / l_i and the gradient of
+// Phi_mu: both against central differences, for non-symmetric (mean value) and negative (cotangent) weights, with
+// and without the barrier; and the gradient J^T r against the closed form of summarize_stationarity().
+TEST(ImbalanceLeastSquares, JacobianAndGradientMatchFiniteDifferences)
+{
+  for(const std::string name : {"sphere966.off", "triceratops.off"}) {
+    const SPI::Mesh_arrays arrays = arrays_of(read_mesh(cgal_data + "/" + name));
+    for(SP::Weighting weighting : {SP::Weighting::MEAN_VALUE, SP::Weighting::COTANGENT}) {
+      const SPI::Sphere_system system = system_of(arrays, weighting);
+      const std::vector<SPI::Vector3> x = derivative_test_map(name, arrays, system);
+      ASSERT_EQ(SPI::certify(system.triangles, x).flipped_faces, 0u) << name;
+      const std::size_t n = x.size();
+      SPI::Imbalance_least_squares problem(system);
+      problem.evaluate(x, 0.);
+      problem.set_face_scales(x);
+      for(double mu : {0., 1e-2}) {
+        const std::string label = name + (weighting == SP::Weighting::MEAN_VALUE ? ", mean value" : ", cotangent") + ", mu " + std::to_string(mu);
+        problem.evaluate(x, mu);
+        problem.linearize(x, mu);
+        const Eigen::VectorXd gradient = problem.gradient();
+        const Eigen::SparseMatrix<double> jacobian = problem.jacobian();
+        const std::vector<SPI::Vector3> t1 = problem.frame1(), t2 = problem.frame2();
+        if(mu == 0.) {
+          const SPI::Imbalance_summary closed_form = SPI::summarize_stationarity(system, x, 1e-6);
+          const SPI::Imbalance_summary from_jacobian = problem.stationarity(1e-6);
+          EXPECT_NEAR(closed_form.max, from_jacobian.max, 1e-9 * closed_form.max) << label;
+          EXPECT_NEAR(closed_form.rms, from_jacobian.rms, 1e-9 * closed_form.rms) << label;
+        }
+        std::mt19937 random(11);
+        std::normal_distribution<double> normal;
+        Eigen::VectorXd d(static_cast<Eigen::Index>(2 * n));
+        for(Eigen::Index k = 0; k < d.size(); ++k) d[k] = normal(random);
+        const double h = 1e-11;  // below the smallest triangles of the guess
+        const std::vector<SPI::Vector3> plus = moved_along(x, t1, t2, d, h), minus = moved_along(x, t1, t2, d, -h);
+        // The directional derivative of Phi_mu.
+        const double slope = (problem.evaluate(plus, mu) - problem.evaluate(minus, mu)) * (0.5 / h);
+        EXPECT_NEAR(slope, gradient.dot(d), 1e-4 * gradient.norm() * d.norm()) << label;
+        // J d against the differences of the r_i, each in the tangent frame at x_i.
+        if(mu == 0.) {
+          SPI::Least_squares_terms at_plus, at_minus;
+          SPI::compute_least_squares_terms(system, plus, at_plus);
+          SPI::compute_least_squares_terms(system, minus, at_minus);
+          const Eigen::VectorXd product = jacobian * d;
+          double error = 0., norm = 0.;
+          for(std::size_t i = 0; i < n; ++i) {
+            const SPI::Vector3 difference = (at_plus.force[i] * (1. / at_plus.scale[i]) - at_minus.force[i] * (1. / at_minus.scale[i])) * (0.5 / h);
+            const double a = SPI::dot(t1[i], difference) - product[static_cast<Eigen::Index>(2 * i)];
+            const double b = SPI::dot(t2[i], difference) - product[static_cast<Eigen::Index>(2 * i + 1)];
+            error += a * a + b * b;
+            norm += product[static_cast<Eigen::Index>(2 * i)] * product[static_cast<Eigen::Index>(2 * i)] +
+                    product[static_cast<Eigen::Index>(2 * i + 1)] * product[static_cast<Eigen::Index>(2 * i + 1)];
+          }
+          EXPECT_LT(std::sqrt(error / norm), 1e-4) << label;
+        }
+      }
     }
   }
 }

@@ -62,9 +62,10 @@ struct Result {
   /// Vertices whose imbalance exceeds the tolerance (or their rounding floor, where it is larger); 0 when balanced.
   std::size_t unbalanced_vertices = 0;
   /// Non-symmetric weights (mean value) only, whose balance equations generally have no exact solution: the largest
-  /// stationarity \f$ \sigma_k \f$ of their least-squares problem \f$ \min \frac{1}{2} \sum_i |t_i|^2 \f$ (the length of its
-  /// gradient at vertex \f$ k \f$ over the size of its terms, see the manual's "Converged"). For them the default test
-  /// is `max_stationarity <= tolerance` instead of the imbalance; -1 for symmetric weights.
+  /// stationarity \f$ \sigma_k \f$ of their least-squares problem \f$ \min \frac{1}{2} \sum_i e_i^2 \f$ (the imbalances
+  /// themselves; \f$ \sigma_k \f$ is the length of its gradient at vertex \f$ k \f$ over the size of its terms, see the
+  /// manual's "Converged"). For them the default test is `max_stationarity <= tolerance` instead of the imbalance;
+  /// -1 for symmetric weights.
   double max_stationarity = -1.;
   std::size_t unstationary_vertices = 0;  ///< Vertices whose stationarity exceeds the tolerance (non-symmetric weights).
   Convergence_test convergence_test = Convergence_test::IMBALANCE; ///< The test the iterations stopped on.

@@ -313,13 +313,16 @@ private:
     // The default solver first tries Newton's full steps (through folds, keeping degree 1) from the initial guess:
     // where they converge (most meshes, in 4 to 20 steps) stage 2 is not needed. Otherwise the paper's order
     // follows from the initial guess again: stage 2, then stage 3 (which tries the same steps from stage 2's result
-    // before the bijectivity-preserving ones).
+    // before the bijectivity-preserving ones). Non-symmetric weights (imbalance test): the least-squares iterations
+    // first, which need no smoothing either (bear, mean value: 2.6 s from the initial guess, 25 s after stage 2).
     Iteration_report direct_newton;
     Stopwatch direct_clock;
-    const bool try_direct_newton = !cancelled_ && !no_balanced_solution_ && system_.symmetric &&
-                                   options_.nonlinear_solver == Nonlinear_solver::GLOBAL_NEWTON && iteration_options_.max_newton_sweeps > 0;
+    const bool try_direct_newton = !cancelled_ && !no_balanced_solution_ &&
+                                   options_.nonlinear_solver == Nonlinear_solver::GLOBAL_NEWTON && iteration_options_.max_newton_sweeps > 0 &&
+                                   (system_.symmetric || iteration_options_.convergence_test == Convergence_test::IMBALANCE);
     if(try_direct_newton) {
-      direct_newton = full_newton_steps(state, iteration_options_, iterations_clock);
+      direct_newton = system_.symmetric ? full_newton_steps(state, iteration_options_, iterations_clock)
+                                        : least_squares_newton(state, iteration_options_, iterations_clock);
       if(options_.coarse_level && !direct_newton.converged) {
         iteration_options_.max_gauss_seidel_sweeps = 0;
         iteration_options_.max_newton_sweeps = 0;

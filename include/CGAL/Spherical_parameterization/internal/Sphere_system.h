@@ -397,55 +397,102 @@ inline Imbalance_summary summarize_imbalance(const Sphere_system& system, const 
 }
 
 // The stationarity of the least-squares problem of non-symmetric weights (mean value), whose balance equations
-// generally have no exact solution: the 2n tangential equations F_i = 0 (F_i the tangential part of
-// sum_j w_ij (x_j - x_i), normalized weights) are 3 more than the unknowns modulo rotations once the three torque
-// identities of symmetric weights fail. The map then minimizes Phi = 1/2 sum_i |F_i|^2, whose gradient at vertex k is
-//   g_k = -alpha_k F_k + P_k sum_{j in N(k)} w_jk F_j,   alpha_k = sum_j w_kj x_k . x_j,   P_k = I - x_k x_k^T
-// (J_ik = w_ik P_i on the tangent plane of k, J_kk = -alpha_k I: the Jacobian of tangent_newton_system.h). In the
-// scale of the imbalance, sigma_k = |g_k| / L_k with L_k = |alpha_k| l_k + sum_j |w_jk| l_j and l_i = sum_j |w_ij|
-// |x_j - x_i|: the size g_k would have if every F_i of its terms were as large as its own neighbourhood. Balanced maps
-// have sigma = 0; for symmetric weights sigma is not needed (F = 0 is reachable). Its rounding floor is the
-// imbalance's, carried through the same terms.
-inline Imbalance_summary summarize_stationarity(const Sphere_system& system, const std::vector<Vector3>& x, double tolerance)
+// generally have no exact solution: the 2n tangential equations are 3 more than the unknowns modulo rotations once
+// the three torque identities of symmetric weights fail. The map then minimizes the imbalances themselves,
+//   Psi = 1/2 sum_i e_i^2,   e_i = |F_i| / l_i,   F_i = P_i sum_j w_ij (x_j - x_i),   l_i = sum_j |w_ij| |x_j - x_i|
+// (imbalance_least_squares.h): each vertex in its own scale, as the convergence test measures it. (The absolute
+// residuals' problem, min sum_i |F_i|^2, is solved by the collapse onto a point: its iterations drifted along the
+// boosts towards it and stalled; see the manual.) With alpha_k = sum_j w_kj x_k . x_j, U_k = sum_j |w_kj| u_kj and
+// u_kj the unit vector from x_k to x_j, the gradient at vertex k is the tangential part of
+//   -alpha_k F_k / l_k^2 + |F_k|^2 U_k / l_k^3 + sum_{j: k in N(j)} (w_jk F_j / l_j^2 - |w_jk| |F_j|^2 u_jk / l_j^3).
+// In the scale of the imbalance, sigma_k = |grad_k Psi| / S_k with S_k = |alpha_k| / l_k + sum_{j: k in N(j)}
+// |w_jk| / l_j: the size the gradient would have if every e_i of its terms were 1. Balanced maps have sigma = 0.
+// Its rounding floor is the imbalance's, carried through the same terms.
+struct Least_squares_terms {
+  std::vector<Vector3> force;     // F_i
+  std::vector<Vector3> pull;      // U_i
+  std::vector<double> scale;      // l_i
+  std::vector<double> alpha;      // alpha_i
+  std::vector<double> magnitude;  // sum_j |w_ij|
+};
+
+inline void compute_least_squares_terms(const Sphere_system& system, const std::vector<Vector3>& x, Least_squares_terms& terms)
 {
   const std::size_t n = system.number_of_vertices;
-  std::vector<Vector3> force(n);
-  std::vector<double> alpha(n), scale(n), magnitude(n);
+  terms.force.resize(n);
+  terms.pull.resize(n);
+  terms.scale.resize(n);
+  terms.alpha.resize(n);
+  terms.magnitude.resize(n);
   for(std::size_t i = 0; i < n; ++i) {
-    Vector3 d;
+    Vector3 d, u;
     double a = 0., l = 0., m = 0.;
     for(std::size_t k = system.offsets[i]; k < system.offsets[i + 1]; ++k) {
       const Vector3 e = x[static_cast<std::size_t>(system.neighbors[k])] - x[i];
       const double w = system.weights[k];
+      const double length_e = length(e);
       d += w * e;
       a += w * (1. - 0.5 * squared_length(e));
-      l += std::abs(w) * length(e);
+      l += std::abs(w) * length_e;
       m += std::abs(w);
+      if(length_e > 0.) u += (std::abs(w) / length_e) * e;
     }
-    force[i] = tangential_part(x[i], d);
-    alpha[i] = a;
-    scale[i] = l;
-    magnitude[i] = m;
+    terms.force[i] = tangential_part(x[i], d);
+    terms.pull[i] = u;
+    terms.scale[i] = l;
+    terms.alpha[i] = a;
+    terms.magnitude[i] = m;
   }
+}
+
+// sigma_k against `tolerance` with its rounding floor, given |gradient_k| for every vertex.
+template <typename GradientNorm>
+Imbalance_summary summarize_stationarity(const Sphere_system& system, const Least_squares_terms& terms, double tolerance,
+                                         GradientNorm&& gradient_norm)
+{
   constexpr double half_ulp = 1.1102230246251565e-16;  // 2^-53
+  const double rounding = imbalance_rounding_factor * 2. * std::sqrt(3.) * half_ulp;
   Imbalance_accumulator accumulator(tolerance);
-  for(std::size_t k = 0; k < n; ++k) {
-    Vector3 pull;
-    double size = std::abs(alpha[k]) * scale[k], noise = std::abs(alpha[k]) * magnitude[k];
+  for(std::size_t k = 0; k < system.number_of_vertices; ++k) {
+    const double lk = terms.scale[k];
+    double size = lk > 0. ? std::abs(terms.alpha[k]) / lk : 0.;
+    double noise = lk > 0. ? size * rounding * terms.magnitude[k] / lk : 0.;
     for(std::size_t e = system.offsets[k]; e < system.offsets[k + 1]; ++e) {
       const std::size_t j = static_cast<std::size_t>(system.neighbors[e]);
-      const double w = system.weights[system.reverse[e]];  // w_jk
-      pull += w * force[j];
-      size += std::abs(w) * scale[j];
-      noise += std::abs(w) * magnitude[j];
+      if(!(terms.scale[j] > 0.)) continue;
+      const double term = std::abs(system.weights[system.reverse[e]]) / terms.scale[j];
+      size += term;
+      noise += term * rounding * terms.magnitude[j] / terms.scale[j];
     }
-    const double gradient = length(tangential_part(x[k], pull) - alpha[k] * force[k]);
-    double sigma = size > 0. ? gradient / size : (gradient > 0. ? HUGE_VAL : 0.);
+    const double g = gradient_norm(k);
+    double sigma = size > 0. ? g / size : (g > 0. ? HUGE_VAL : 0.);
     if(!(sigma == sigma)) sigma = HUGE_VAL;
-    const double floor = size > 0. ? imbalance_rounding_factor * 2. * std::sqrt(3.) * half_ulp * noise / size : HUGE_VAL;
-    accumulator.add(sigma, floor);
+    accumulator.add(sigma, size > 0. ? noise / size : HUGE_VAL);
   }
   return accumulator.summary();
+}
+
+inline Imbalance_summary summarize_stationarity(const Sphere_system& system, const std::vector<Vector3>& x, double tolerance)
+{
+  Least_squares_terms terms;
+  compute_least_squares_terms(system, x, terms);
+  return summarize_stationarity(system, terms, tolerance, [&](std::size_t k) {
+    const double lk = terms.scale[k];
+    Vector3 g;
+    if(lk > 0.)
+      g = (-terms.alpha[k] / (lk * lk)) * terms.force[k] + (squared_length(terms.force[k]) / (lk * lk * lk)) * terms.pull[k];
+    for(std::size_t e = system.offsets[k]; e < system.offsets[k + 1]; ++e) {
+      const std::size_t j = static_cast<std::size_t>(system.neighbors[e]);
+      const double lj = terms.scale[j];
+      if(!(lj > 0.)) continue;
+      const double w = system.weights[system.reverse[e]];  // w_jk
+      const Vector3 edge = x[k] - x[j];
+      const double length_edge = length(edge);
+      g += (w / (lj * lj)) * terms.force[j];
+      if(length_edge > 0.) g -= (std::abs(w) * squared_length(terms.force[j]) / (lj * lj * lj * length_edge)) * edge;
+    }
+    return length(tangential_part(x[k], g));
+  });
 }
 
 // What the iterations watch, from one pass over the vertices: the paper's Res and the imbalances.

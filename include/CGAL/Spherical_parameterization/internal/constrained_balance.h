@@ -50,17 +50,41 @@ struct Constrained_balance_report {
   bool cancelled = false;
 };
 
+// det(a, b, c) with differences, so that tiny triangles keep their digits.
+inline double face_determinant(const Vector3& a, const Vector3& b, const Vector3& c) { return dot(a, cross(b - a, c - a)); }
+
+// d det(p, q, r) / d p = q x r, written as (q - p) x (r - p) + p x (r - q) for tiny triangles' digits.
+inline Vector3 determinant_gradient(const Vector3& p, const Vector3& q, const Vector3& r)
+{
+  return cross(q - p, r - p) + cross(p, r - q);
+}
+
+// The barrier's face constants c_f: the force of -c_f log det_f at each vertex k of the face is at most `size[k]`
+// (per unit mu) at x, on every scale of the mesh. Faces not positive at x get 0.
+inline std::vector<double> barrier_face_scales(const Sphere_system& system, const std::vector<Vector3>& x, const std::vector<double>& size)
+{
+  std::vector<double> scales(system.triangles.size(), 0.);
+  for(std::size_t f = 0; f < system.triangles.size(); ++f) {
+    const auto& t = system.triangles[f];
+    const Vector3 p[3] = {x[static_cast<std::size_t>(t[0])], x[static_cast<std::size_t>(t[1])], x[static_cast<std::size_t>(t[2])]};
+    const double det = face_determinant(p[0], p[1], p[2]);
+    double c = HUGE_VAL;
+    for(int k = 0; k < 3; ++k) {
+      const double force = length(tangential_part(p[k], determinant_gradient(p[k], p[(k + 1) % 3], p[(k + 2) % 3])));
+      if(force > 0.) c = std::min(c, size[static_cast<std::size_t>(t[k])] / force);
+    }
+    scales[f] = std::isfinite(c) && det > 0. ? c * det : 0.;
+  }
+  return scales;
+}
+
 class Constrained_balance {
 public:
   // `rotation_shift`: the relative diagonal shift against the rotations, an exact null space of the Hessian.
   explicit Constrained_balance(const Sphere_system& system, double rotation_shift = Solver_tuning().cautious_damping)
     : system_(system), rotation_shift_(rotation_shift) {}
 
-  // det(a, b, c) with differences, so that tiny triangles keep their digits.
-  static double determinant(const Vector3& a, const Vector3& b, const Vector3& c)
-  {
-    return dot(a, cross(b - a, c - a));
-  }
+  static double determinant(const Vector3& a, const Vector3& b, const Vector3& c) { return face_determinant(a, b, c); }
 
   // c_f such that the face's barrier force at each of its vertices is at most mu times the vertex's scale l_k now.
   void set_face_scales(const std::vector<Vector3>& x)
@@ -70,18 +94,7 @@ public:
     for(std::size_t i = 0; i < n; ++i)
       for(std::size_t k = system_.offsets[i]; k < system_.offsets[i + 1]; ++k)
         l[i] += std::abs(system_.weights[k] * system_.row_sums[i]) * length(x[static_cast<std::size_t>(system_.neighbors[k])] - x[i]);
-    scale_.resize(system_.triangles.size());
-    for(std::size_t f = 0; f < system_.triangles.size(); ++f) {
-      const auto& t = system_.triangles[f];
-      const Vector3 p[3] = {x[static_cast<std::size_t>(t[0])], x[static_cast<std::size_t>(t[1])], x[static_cast<std::size_t>(t[2])]};
-      const double det = determinant(p[0], p[1], p[2]);
-      double c = HUGE_VAL;
-      for(int k = 0; k < 3; ++k) {
-        const double force = length(tangential_part(p[k], opposite_cross(p[k], p[(k + 1) % 3], p[(k + 2) % 3])));
-        if(force > 0.) c = std::min(c, l[static_cast<std::size_t>(t[k])] / force);
-      }
-      scale_[f] = std::isfinite(c) ? c * det : 0.;
-    }
+    scale_ = barrier_face_scales(system_, x, l);
   }
 
   // The Riemannian gradient of Phi_mu at every vertex (tangent vectors) and the scale l_i of each vertex.
@@ -228,11 +241,7 @@ public:
   }
 
 private:
-  // d det(p, q, r) / d p = q x r, written as (q - p) x (r - p) + p x (r - q) for tiny triangles' digits.
-  static Vector3 opposite_cross(const Vector3& p, const Vector3& q, const Vector3& r)
-  {
-    return cross(q - p, r - p) + cross(p, r - q);
-  }
+  static Vector3 opposite_cross(const Vector3& p, const Vector3& q, const Vector3& r) { return determinant_gradient(p, q, r); }
 
   void add_block(std::vector<Eigen::Triplet<double>>& entries, std::size_t i, std::size_t j, double w, const Vector3& t1_j,
                  const Vector3& t2_j) const

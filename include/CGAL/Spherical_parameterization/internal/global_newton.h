@@ -1,5 +1,7 @@
 // Stage 3, beyond the paper: Newton's method on all vertices at once, in tangent coordinates.
 //
+// Non-symmetric weights (mean value) minimize their imbalances by the least-squares iterations of
+// imbalance_least_squares.h (least_squares_newton() below).
 // global_newton() first runs the Moebius-aware Newton of mobius_newton.h (symmetric weights), which converges
 // in a few steps on most meshes. Where its steps keep being cut short, weights other than Tutte's are reached by
 // continuation from Tutte's (weight_continuation.h), then by interior-point iterations from where the path ends
@@ -8,7 +10,7 @@
 // takes over from the best iterate:
 // unknowns d_i in the tangent planes, equations F_i = T_i^T sum_j W_ij x_j, the Jacobian
 // dF_i = -(x_i . s_i) d_i + sum_j W_ij T_i^T T_j d_j with a tiny diagonal shift against the rotations
-// (Levenberg-Marquardt steps (J^T J + mu I) d = J^T F for non-symmetric weights), each step halved until it keeps
+// (Levenberg-Marquardt steps (J^T J + mu I) d = J^T F for non-symmetric weights under the paper's criterion), each step halved until it keeps
 // every positively oriented triangle positive (exact predicate) and lowers the paper's residual, and the
 // paper's local Newton sweeps whenever no such step exists.
 
@@ -21,6 +23,7 @@
 #include <CGAL/Spherical_parameterization/internal/tangent_newton_system.h>
 #include <CGAL/Spherical_parameterization/internal/weight_continuation.h>
 #include <CGAL/Spherical_parameterization/internal/constrained_balance.h>
+#include <CGAL/Spherical_parameterization/internal/imbalance_least_squares.h>
 
 #include <Eigen/Sparse>
 #include <Eigen/SparseLU>
@@ -186,35 +189,8 @@ private:
 
   // The Jacobian's pattern (2x2 blocks of the vertex adjacency plus the diagonal) and, for every block, where its
   // four values sit in the compressed storage, so that each step writes values in place without sorting.
-  void build_pattern()
-  {
-    const std::size_t n = system_.number_of_vertices;
-    std::vector<Eigen::Triplet<double>> triplets;
-    triplets.reserve(4 * (n + system_.neighbors.size()));
-    auto add_block = [&](std::size_t i, std::size_t j) {
-      for(int a = 0; a < 2; ++a)
-        for(int b = 0; b < 2; ++b) triplets.emplace_back(int(2 * i + a), int(2 * j + b), 0.);
-    };
-    for(std::size_t i = 0; i < n; ++i) {
-      add_block(i, i);
-      for(std::size_t k = system_.offsets[i]; k < system_.offsets[i + 1]; ++k) add_block(i, std::size_t(system_.neighbors[k]));
-    }
-    jacobian_.resize(int(2 * n), int(2 * n));
-    jacobian_.setFromTriplets(triplets.begin(), triplets.end());
-    jacobian_.makeCompressed();
-    auto slot = [&](std::size_t row, std::size_t column) {
-      return compressed_slot(jacobian_, static_cast<Eigen::Index>(row), static_cast<Eigen::Index>(column));
-    };
-    auto block = [&](std::size_t i, std::size_t j) {
-      return std::array<std::size_t, 4>{slot(2 * i, 2 * j), slot(2 * i, 2 * j + 1), slot(2 * i + 1, 2 * j), slot(2 * i + 1, 2 * j + 1)};
-    };
-    diagonal_slots_.resize(n);
-    block_slots_.resize(system_.neighbors.size());
-    for(std::size_t i = 0; i < n; ++i) {
-      diagonal_slots_[i] = block(i, i);
-      for(std::size_t k = system_.offsets[i]; k < system_.offsets[i + 1]; ++k) block_slots_[k] = block(i, std::size_t(system_.neighbors[k]));
-    }
-  }
+  void build_pattern() { build_block_pattern(system_, jacobian_, diagonal_slots_, block_slots_); }
+
 
   const Sphere_system& system_;
   const Solver_tuning& tuning_;
@@ -290,14 +266,41 @@ inline Iteration_report full_newton_steps(Sphere_state& state, const Iteration_o
   return report;
 }
 
+// Non-symmetric weights (mean value): the least-squares iterations of imbalance_least_squares.h, which minimize the
+// imbalances in their own scale, after at most 50 cautious Newton steps where the map has non-positive faces (they
+// start from a bijective map). With the paper's criterion (Res, whose least-squares problem the collapse solves), the
+// cautious Newton alone, as the paper's test asks.
+inline Iteration_report least_squares_newton(Sphere_state& state, const Iteration_options& options, const Stopwatch& clock)
+{
+  if(options.convergence_test == Convergence_test::PAPER_RESIDUAL) return cautious_newton(state, options, clock);
+  Iteration_report report;
+  if(state.invalid_faces() != 0) {
+    Iteration_options repair = options;
+    repair.max_newton_sweeps = std::min<std::size_t>(options.max_newton_sweeps, 50);
+    report = cautious_newton(state, repair, clock);
+    if(report.converged || report.cancelled || report.out_of_time) return report;
+  }
+  Iteration_options remaining = options;
+  remaining.max_newton_sweeps = options.max_newton_sweeps > report.sweeps ? options.max_newton_sweeps - report.sweeps : 0;
+  const Least_squares_report least_squares = imbalance_least_squares(state, remaining, clock);
+  report.sweeps += least_squares.steps;
+  report.cancelled = least_squares.cancelled;
+  report.out_of_time = least_squares.out_of_time;
+  const Map_measure measure = measure_map(state.system(), state.positions(), options.tolerance);
+  report.residual = measure.residual;
+  report.converged = has_converged(measure, state.invalid_faces(), options);
+  report.stagnated = !report.converged && !report.cancelled && !report.out_of_time;
+  return report;
+}
+
 // Stage 3. Symmetric weights: Newton's steps through folds, then the bijectivity-preserving Moebius-aware Newton; if it gives up and the weights are not Tutte's, the
 // continuation from Tutte's weights; if that fails too, the cautious Newton from the best iterate so far.
-// Non-symmetric weights: the cautious Newton (Levenberg-Marquardt).
+// Non-symmetric weights: least_squares_newton().
 inline Iteration_report global_newton(Sphere_state& state, const Iteration_options& options, const Stopwatch& clock,
                                       const std::vector<Vector3>* initial_guess = nullptr)
 {
   const Sphere_system& system = state.system();
-  if(!system.symmetric) return cautious_newton(state, options, clock);
+  if(!system.symmetric) return least_squares_newton(state, options, clock);
   // Full Newton steps through folds first: on most meshes the fastest way to the balanced map (4 to 20 steps).
   Mobius_newton_statistics statistics;
   Iteration_report free_steps = mobius_newton(state, options, clock, &statistics, options.tuning.free_newton_patience, true);

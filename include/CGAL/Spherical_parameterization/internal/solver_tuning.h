@@ -85,6 +85,13 @@ struct Solver_tuning {
   // the tolerance (barrier forces far below it), to the tolerance.
   double barrier_phase_factor = 10.;
   double barrier_final_fraction = 1e-2;
+  // The least-squares iterations (imbalance_least_squares.h) use the constants above for their barrier phases,
+  // each at most this many steps (Gauss-Newton's steps of a barrier phase crawl where many vertices stay far from
+  // balanced: triceratops with mean-value weights, hundreds of steps at mu = 1e-2 for a stationarity of 0.18).
+  std::size_t least_squares_phase_steps = 30;
+  // The plain Gauss-Newton steps (one sparse LU each) give way to Marquardt's (a Cholesky factorization of J^T J)
+  // once the worst stationarity has not halved in this many steps.
+  std::size_t least_squares_plain_window = 5;
 };
 
 } // namespace internal

@@ -101,6 +101,41 @@ inline std::size_t compressed_slot(const Eigen::SparseMatrix<double>& matrix, Ei
   return static_cast<std::size_t>(std::lower_bound(begin, end, static_cast<int>(row)) - matrix.innerIndexPtr());
 }
 
+// A 2n x 2n matrix with the 2x2 blocks (i, i) and (i, j), j a neighbour of i, all zero, and where each block's four
+// values sit in its compressed storage (`diagonal_slots[i]`, `block_slots[k]` for the k-th neighbour entry), so that
+// each step writes them in place without sorting.
+inline void build_block_pattern(const Sphere_system& system, Eigen::SparseMatrix<double>& matrix,
+                                std::vector<std::array<std::size_t, 4>>& diagonal_slots,
+                                std::vector<std::array<std::size_t, 4>>& block_slots)
+{
+  const std::size_t n = system.number_of_vertices;
+  std::vector<Eigen::Triplet<double>> triplets;
+  triplets.reserve(4 * (n + system.neighbors.size()));
+  auto add_block = [&](std::size_t i, std::size_t j) {
+    for(int a = 0; a < 2; ++a)
+      for(int b = 0; b < 2; ++b) triplets.emplace_back(int(2 * i + std::size_t(a)), int(2 * j + std::size_t(b)), 0.);
+  };
+  for(std::size_t i = 0; i < n; ++i) {
+    add_block(i, i);
+    for(std::size_t k = system.offsets[i]; k < system.offsets[i + 1]; ++k) add_block(i, std::size_t(system.neighbors[k]));
+  }
+  matrix.resize(int(2 * n), int(2 * n));
+  matrix.setFromTriplets(triplets.begin(), triplets.end());
+  matrix.makeCompressed();
+  auto slot = [&](std::size_t row, std::size_t column) {
+    return compressed_slot(matrix, static_cast<Eigen::Index>(row), static_cast<Eigen::Index>(column));
+  };
+  auto block = [&](std::size_t i, std::size_t j) {
+    return std::array<std::size_t, 4>{slot(2 * i, 2 * j), slot(2 * i, 2 * j + 1), slot(2 * i + 1, 2 * j), slot(2 * i + 1, 2 * j + 1)};
+  };
+  diagonal_slots.resize(n);
+  block_slots.resize(system.neighbors.size());
+  for(std::size_t i = 0; i < n; ++i) {
+    diagonal_slots[i] = block(i, i);
+    for(std::size_t k = system.offsets[i]; k < system.offsets[i + 1]; ++k) block_slots[k] = block(i, std::size_t(system.neighbors[k]));
+  }
+}
+
 class Tangent_newton_system {
 public:
   explicit Tangent_newton_system(const Sphere_system& system) : system_(system) {}
