@@ -445,25 +445,35 @@ inline void compute_least_squares_terms(const Sphere_system& system, const std::
   }
 }
 
+// S_k = |alpha_k| / l_k + sum_{j: k in N(j)} |w_jk| / l_j, and (if `noise` is given) the rounding floor of the
+// gradient carried through the same terms.
+inline double stationarity_size(const Sphere_system& system, const Least_squares_terms& terms, std::size_t k, double* noise = nullptr)
+{
+  constexpr double half_ulp = 1.1102230246251565e-16;  // 2^-53
+  const double rounding = imbalance_rounding_factor * 2. * std::sqrt(3.) * half_ulp;
+  const double lk = terms.scale[k];
+  double size = lk > 0. ? std::abs(terms.alpha[k]) / lk : 0.;
+  double floor = lk > 0. ? size * rounding * terms.magnitude[k] / lk : 0.;
+  for(std::size_t e = system.offsets[k]; e < system.offsets[k + 1]; ++e) {
+    const std::size_t j = static_cast<std::size_t>(system.neighbors[e]);
+    if(!(terms.scale[j] > 0.)) continue;
+    const double term = std::abs(system.weights[system.reverse[e]]) / terms.scale[j];
+    size += term;
+    floor += term * rounding * terms.magnitude[j] / terms.scale[j];
+  }
+  if(noise != nullptr) *noise = floor;
+  return size;
+}
+
 // sigma_k against `tolerance` with its rounding floor, given |gradient_k| for every vertex.
 template <typename GradientNorm>
 Imbalance_summary summarize_stationarity(const Sphere_system& system, const Least_squares_terms& terms, double tolerance,
                                          GradientNorm&& gradient_norm)
 {
-  constexpr double half_ulp = 1.1102230246251565e-16;  // 2^-53
-  const double rounding = imbalance_rounding_factor * 2. * std::sqrt(3.) * half_ulp;
   Imbalance_accumulator accumulator(tolerance);
   for(std::size_t k = 0; k < system.number_of_vertices; ++k) {
-    const double lk = terms.scale[k];
-    double size = lk > 0. ? std::abs(terms.alpha[k]) / lk : 0.;
-    double noise = lk > 0. ? size * rounding * terms.magnitude[k] / lk : 0.;
-    for(std::size_t e = system.offsets[k]; e < system.offsets[k + 1]; ++e) {
-      const std::size_t j = static_cast<std::size_t>(system.neighbors[e]);
-      if(!(terms.scale[j] > 0.)) continue;
-      const double term = std::abs(system.weights[system.reverse[e]]) / terms.scale[j];
-      size += term;
-      noise += term * rounding * terms.magnitude[j] / terms.scale[j];
-    }
+    double noise = 0.;
+    const double size = stationarity_size(system, terms, k, &noise);
     const double g = gradient_norm(k);
     double sigma = size > 0. ? g / size : (g > 0. ? HUGE_VAL : 0.);
     if(!(sigma == sigma)) sigma = HUGE_VAL;

@@ -1,5 +1,5 @@
-// Stage 3, beyond the paper: the map of least imbalance, for weights whose balanced map does not exist (mean value:
-// not symmetric, three equations too many) or is not bijective (cotangent weights can be negative).
+// Stage 3, beyond the paper: the map of least imbalance, for non-symmetric weights (mean value), whose balance
+// equations are three too many and in general have no exact solution.
 //
 // It minimizes the imbalances themselves, each in its own scale:
 //   Psi(x) = 1/2 sum_i |r_i|^2,   r_i = F_i / l_i,   F_i = P_i sum_j w_ij (x_j - x_i),   l_i = sum_j |w_ij| |x_j - x_i|
@@ -7,12 +7,13 @@
 // convergence test. Where a balanced map exists, it is the minimum (Psi = 0). Unlike the absolute residuals, whose
 // least-squares problem the collapse onto a point solves (every F_i -> 0), Psi is scale-free: a collapse keeps the
 // imbalances near 0.5, so the iterations are not drawn along the boosts towards it.
-// With every spherical triangle kept positive, the minimum subject to det(x_a, x_b, x_c) > 0 is sought through
-//   Phi_mu(x) = Psi(x) - mu sum_f log det_f
-// (the barrier is scale-free too, as Psi is: no per-face constant), by Gauss-Newton steps with a Marquardt shift:
-// (J^T J + B + lambda diag(J^T J)) d = -grad Phi_mu, B = mu sum_f b_f b_f^T / det_f^2 the barrier's positive part,
-// in tangent coordinates, each step cut back until Phi_mu decreases and every triangle stays positive. Every step is
-// a descent step of one function, so the iterations cannot cycle, whatever the sign or symmetry of the weights.
+// Steps, in tangent coordinates, each cut back until Phi decreases (Armijo) and every triangle stays positive:
+// - plain Gauss-Newton steps d = -J^+ r from one sparse LU of J (gauss_newton_step());
+// - Marquardt's steps (J^T J + B + lambda diag(J^T J)) d = -grad Phi where those crawl or do not descend (step());
+// - where the triangles stop the steps, the minimum subject to det(x_a, x_b, x_c) > 0 through
+//   Phi_mu(x) = Psi(x) - mu sum_f c_f log det_f, with B = mu sum_f c_f b_f b_f^T / det_f^2 the barrier's positive
+//   part and c_f set per phase as in constrained_balance.h.
+// Every step is a descent step of one function, so the iterations cannot cycle.
 //
 // Stationarity, in the scale of the imbalance: sigma_k = |grad_k Phi_mu| / S_k with S_k = |alpha_k| / l_k +
 // sum_{j: k in N(j)} |w_jk| / l_j, the size of grad_k Psi if every r_i of its terms had length 1.
@@ -71,18 +72,11 @@ public:
   // (thin triangles and slivers: with c_f = 1 their barrier force was 1e5 times the imbalance's scale).
   void set_face_scales(const std::vector<Vector3>& x) { face_scale_ = barrier_face_scales(system_, x, stationarity_scales()); }
 
-  // S_k = |alpha_k| / l_k + sum_{j: k in N(j)} |w_jk| / l_j (after evaluate()).
+  // S_k for every vertex (after evaluate()): see stationarity_size().
   std::vector<double> stationarity_scales() const
   {
-    const std::size_t n = system_.number_of_vertices;
-    std::vector<double> size(n, 0.);
-    for(std::size_t k = 0; k < n; ++k) {
-      if(terms_.scale[k] > 0.) size[k] = std::abs(terms_.alpha[k]) / terms_.scale[k];
-      for(std::size_t e = system_.offsets[k]; e < system_.offsets[k + 1]; ++e) {
-        const std::size_t j = static_cast<std::size_t>(system_.neighbors[e]);
-        if(terms_.scale[j] > 0.) size[k] += std::abs(system_.weights[system_.reverse[e]]) / terms_.scale[j];
-      }
-    }
+    std::vector<double> size(system_.number_of_vertices);
+    for(std::size_t k = 0; k < size.size(); ++k) size[k] = stationarity_size(system_, terms_, k);
     return size;
   }
 
