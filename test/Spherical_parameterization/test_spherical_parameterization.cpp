@@ -521,6 +521,52 @@ TEST(Imbalance, ScaleFreeWithARoundingFloor)
   const SPI::Vertex_imbalance tiny = ring_at(1e-12, 0.);
   EXPECT_GT(tiny.rounding_floor, 1e-6);
   EXPECT_LE(tiny.imbalance, tiny.rounding_floor);
+  // Around 1e-16 the floor exceeds 1/2, a test that could not fail: such a vertex never passes, however small its
+  // e_i (a map collapsed within rounding onto two antipodal points passed before; fuzz_regressions/).
+  const SPI::Vertex_imbalance unmeasurable = ring_at(1e-16, 0.);
+  EXPECT_GT(unmeasurable.rounding_floor, SPI::max_rounding_floor);
+  SPI::Imbalance_accumulator accumulator(1e-6);
+  accumulator.add(unmeasurable.imbalance, unmeasurable.rounding_floor);
+  EXPECT_FALSE(accumulator.summary().balanced());
+}
+
+// A tetrahedron collapsed onto two antipodal points (three vertices within 1e-5 of each other): each vertex of the
+// cluster is pulled radially by the fourth, so with chords in l_i its imbalance looked like 7e-7 and the cotangent
+// map passed as converged. With tangential edge lengths the collapse is far from balanced; the regular tetrahedron
+// is balanced.
+TEST(Imbalance, RadialEdgesDoNotHideACollapse)
+{
+  Arrays tetrahedron;
+  tetrahedron.points = {Point(1, 1, 1), Point(1, -1, -1), Point(-1, 1, -1), Point(-1, -1, 1)};
+  tetrahedron.faces = {{0, 1, 2}, {0, 3, 1}, {0, 2, 3}, {1, 3, 2}};
+  const SPI::Mesh_arrays arrays = arrays_of(to_mesh(tetrahedron));
+  SPI::Sphere_system system = SPI::make_connectivity(arrays);
+  std::string message;
+  ASSERT_EQ(SPI::assign_weights(system, arrays, SP::Weighting::COTANGENT, {}, message), SP::Error_code::OK) << message;
+  const SPI::Vector3 pole(0.90011527385607193, 0., -0.43565180336021642);
+  const SPI::Vector3 off1(0., 1., 0.), off2 = SPI::cross(pole, off1);
+  // 4e-6 as the solver left it; 1e-14, where 1 - c^2/4 of the antipodal chord is all rounding.
+  for(double size : {4e-6, 1e-14}) {
+    std::vector<SPI::Vector3> x(4);
+    x[0] = pole;
+    for(int k = 1; k < 4; ++k) {
+      const double angle = 2. * CGAL_PI * k / 3.;
+      SPI::Vector3 p = -pole + size * (std::cos(angle) * off1 + std::sin(angle) * off2);
+      x[std::size_t(k)] = p * (1. / SPI::length(p));
+    }
+    // The cluster's order that makes every triangle positive.
+    if(!SPI::certify(system.triangles, x).bijective) std::swap(x[1], x[2]);
+    ASSERT_TRUE(SPI::certify(system.triangles, x).bijective) << size;
+    const SPI::Imbalance_summary collapsed = SPI::summarize_imbalance(system, x, 1e-6);
+    EXPECT_FALSE(collapsed.balanced()) << size;
+    EXPECT_GE(collapsed.unbalanced_vertices, 3u) << size;
+    if(size > 1e-10) EXPECT_GT(collapsed.max, 1e-2);
+  }
+  // The regular tetrahedron, projected, is balanced.
+  std::vector<SPI::Vector3> regular = arrays.points;
+  for(SPI::Vector3& p : regular) p *= 1. / SPI::length(p);
+  ASSERT_TRUE(SPI::certify(system.triangles, regular).bijective);
+  EXPECT_LT(SPI::summarize_imbalance(system, regular, 1e-6).max, 1e-12);
 }
 
 TEST(GlobalNewton, LowersTheResidualAndKeepsEveryTrianglePositive)

@@ -49,17 +49,19 @@ struct Result {
   double residual = -1.;
   double max_tangential_residual = -1.; ///< `max_i |alpha_i x_i - sum_j w_ij x_j|` (same normalization).
 
-  /// The largest imbalance \f$ e_i = |t_i| / \sum_j |w_{ij}| |x_j - x_i| \f$ over the vertices (see
+  /// The largest imbalance \f$ e_i = |t_i| / \sum_j |w_{ij}| s(|x_j - x_i|) \f$ over the vertices (see
   /// `Convergence_test::IMBALANCE`): how far a vertex is from the balance point of its neighbours, in units of its
   /// own neighbourhood. The default convergence test is `max_imbalance <= tolerance`, except at vertices whose
   /// rounding floor is larger.
   double max_imbalance = -1.;
   double imbalance_percentile_99 = -1.;   ///< The 99th percentile of the imbalances \f$ e_i \f$.
   /// Vertices whose neighbourhood is so small (spherical edges below about 2e-9) that positions rounded to double
-  /// carry an imbalance above the tolerance: \f$ 8 \cdot 2 \sqrt{3} \, 2^{-53} \sum_j |w_{ij}| / \sum_j |w_{ij}| |x_j - x_i| \f$,
-  /// their rounding floor. The imbalance test holds them to that floor instead of the tolerance.
+  /// carry an imbalance above the tolerance: \f$ 8 \cdot 2 \sqrt{3} \, 2^{-53} \sum_j |w_{ij}| / \sum_j |w_{ij}| s(|x_j - x_i|) \f$,
+  /// their rounding floor. The imbalance test holds them to that floor instead of the tolerance; a floor above
+  /// 1/2 (a test that could not fail) never passes.
   std::size_t vertices_at_rounding_floor = 0;
-  /// Vertices whose imbalance exceeds the tolerance (or their rounding floor, where it is larger); 0 when balanced.
+  /// Vertices whose imbalance exceeds the tolerance (or their rounding floor, where it is larger), or whose floor
+  /// exceeds 1/2; 0 when balanced.
   std::size_t unbalanced_vertices = 0;
   /// Non-symmetric weights (mean value) only, whose balance equations generally have no exact solution: the largest
   /// stationarity \f$ \sigma_k \f$ of their least-squares problem \f$ \min \frac{1}{2} \sum_i e_i^2 \f$ (the imbalances

@@ -25,7 +25,7 @@ struct Sphere_map_certificate {
   std::size_t flipped_faces = 0;     ///< Faces whose spherical triangle is not positively oriented (exact predicate).
   double total_signed_area = 0.;     ///< Sum of the signed areas of the spherical triangles (4 pi for a bijection).
   bool valid_mesh = false;           ///< The mesh passes `check_input()` (closed, connected, manifold, oriented, genus 0).
-  bool bijective = false;            ///< A valid mesh, no flipped face, a generic point covered once (exact), area 4 pi.
+  bool bijective = false;            ///< A valid mesh, no flipped face, a generic point covered once (both exact).
 };
 
 namespace internal {
@@ -50,8 +50,8 @@ std::vector<Vector3> read_sphere_map(const TriangleMesh& tm, VertexSphereMap vsm
 /// oriented genus-0 surface), every spherical triangle must be positively oriented, `CGAL::orientation(ORIGIN, p, q, r)
 /// == POSITIVE` decided exactly, a generic point of the sphere must be covered by exactly one triangle, also decided
 /// exactly (with every triangle positive that count is the degree of the map, so this excludes multiple
-/// coverings), and the signed spherical areas must add up to 4 pi (within pi; a check of the count, with the
-/// ill-conditioned areas of nearly degenerate triangles evaluated exactly).
+/// coverings). The sum of the signed spherical areas is reported (4 pi on a bijection, up to the rounding of
+/// nearly degenerate triangles) but does not decide.
 ///
 /// \tparam TriangleMesh a model of `FaceListGraph` and `VertexListGraph`.
 /// \tparam VertexSphereMap a model of `ReadablePropertyMap` from vertices to points with `x()`, `y()`, `z()`.

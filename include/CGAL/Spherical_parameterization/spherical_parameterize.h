@@ -46,8 +46,8 @@ using Sparse_LU_disk_solver_traits = internal::Sparse_LU_solver_traits;
 /// parameterizers, Moebius inversion, inverse stereographic projection), projected Gauss-Seidel while the
 /// residual decreases, then Newton steps (by default on all vertices at once; the paper's local Newton on request)
 /// until every vertex is balanced in its own scale (`Convergence_test::IMBALANCE`). The output is
-/// certified: every spherical triangle is positively oriented under an exact predicate and the areas add up to
-/// 4 pi (`Result::bijective`); only then is the status `Error_code::OK`.
+/// certified: every spherical triangle is positively oriented and a generic point is covered once, both under
+/// exact predicates (`Result::bijective`); only then is the status `Error_code::OK`.
 ///
 /// The mesh is never modified. On an input error nothing is written to `vsm`; otherwise `vsm` receives the
 /// final (best) iterate, also when the status is `NOT_CONVERGED` or `NOT_BIJECTIVE`.

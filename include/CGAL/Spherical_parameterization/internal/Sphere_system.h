@@ -277,32 +277,56 @@ inline Residuals compute_residuals(const Sphere_system& system, const std::vecto
 }
 
 // The imbalance of vertex i, the default convergence measure: e_i = |t_i| / l_i with d_i = sum_j w_ij (x_j - x_i)
-// (normalized weights), t_i its tangential part at x_i and l_i = sum_j |w_ij| |x_j - x_i|: how far x_i is from the
-// balance point of its neighbours, in units of its own neighbourhood, whatever the size of its triangles. The
+// (normalized weights), t_i its tangential part at x_i and l_i = sum_j |w_ij| s(|x_j - x_i|): how far x_i is from
+// the balance point of its neighbours, in units of its own neighbourhood, whatever the size of its triangles. The
 // differences keep the digits of spherical edges of 1e-10, which sums of O(1) positions would lose.
+// s(c) = c sqrt(1 - c^2/4) is the length of the tangential part of an edge of chord c (the sine of its angle): an
+// edge to a nearly antipodal neighbour pulls radially, so its chord would hide the vertex's imbalance in l_i (the
+// collapse of a tetrahedron onto two antipodal points passed with e_i 7e-7 before). s(c) <= c, so the test is never
+// looser than with chords, and stricter by 1 / sqrt(1 - c^2/4) <= 1.01 on edges up to 16 degrees.
 //
 // Positions rounded to double carry an imbalance of their own: moving x_i and its neighbours by half an ulp
 // (|dx| <= sqrt(3) 2^-53 each) changes d_i by up to 2 sqrt(3) 2^-53 sum_j |w_ij|. `rounding_floor` is
 // imbalance_rounding_factor times that, over l_i: below it no solver can balance the vertex in double precision,
 // so a vertex passes when e_i <= max(tolerance, rounding_floor_i). It exceeds 1e-6 only for neighbourhoods below
-// about 2e-9 (the thin limbs of organic models); such vertices are counted and reported.
+// about 2e-9 (the thin limbs of organic models); such vertices are counted and reported. A vertex whose floor
+// exceeds max_rounding_floor never passes: every e_i is at most 1 (up to rounding), so that test could not fail,
+// and it passed maps collapsed within rounding onto two points (found by the fuzzer: floors of 1 and more). The
+// thin limbs of CGAL's man.off and of oded_scorpion have floors up to a few 1e-2 and stay testable.
 constexpr double imbalance_rounding_factor = 8.;
+constexpr double max_rounding_floor = 0.5;
+
+// s = |x_i x e|, the length of the tangential part at the unit vector x_i of the edge e = x_j - x_i: c sqrt(1 - c^2/4)
+// for the chord c = |e|, written as a cross product because 1 - c^2/4 cancels near antipodal neighbours (rounding
+// made s 2e-8 for a neighbour within 1e-15 of the antipode).
+inline double tangential_edge_length(const Vector3& x_i, const Vector3& e) { return length(cross(x_i, e)); }
+// ds/dc = (1 - c^2/2) / cos(theta/2) with cos(theta/2) = s / c; capped near antipodal neighbours (-infinity there).
+inline double tangential_edge_length_derivative(double chord, double tangential)
+{
+  const double half_angle_cosine = chord > 0. ? tangential / chord : 1.;
+  return (1. - 0.5 * chord * chord) / std::max(1e-8, half_angle_cosine);
+}
 
 struct Vertex_imbalance {
   double imbalance = 0.;      // e_i
   double rounding_floor = 0.; // the smallest e_i that double precision can promise at this vertex
   double squared_residual = 0.; // |t_i|^2: the vertex's term of the paper's Res (compute_residuals)
+  // |t_i| / sum_j |w_ij| |x_j - x_i|, with chords: what the line searches lower (imbalance_merit). It differs from
+  // e_i only next to nearly antipodal neighbours, and changing the merit changes the Newton paths on hard meshes
+  // (CGAL's handle.off took a different path with e_i as the merit and did not converge).
+  double chordal_imbalance = 0.;
 };
 
 inline Vertex_imbalance vertex_imbalance(const Sphere_system& system, const std::vector<Vector3>& x, std::size_t i)
 {
   Vector3 d;
-  double scale = 0., weight_magnitude = 0.;
+  double scale = 0., chordal_scale = 0., weight_magnitude = 0.;
   for(std::size_t k = system.offsets[i]; k < system.offsets[i + 1]; ++k) {
     const Vector3 e = x[static_cast<std::size_t>(system.neighbors[k])] - x[i];
     const double w = system.weights[k];
     d += w * e;
-    scale += std::abs(w) * length(e);
+    scale += std::abs(w) * tangential_edge_length(x[i], e);
+    chordal_scale += std::abs(w) * length(e);
     weight_magnitude += std::abs(w);
   }
   Vertex_imbalance result;
@@ -317,11 +341,14 @@ inline Vertex_imbalance vertex_imbalance(const Sphere_system& system, const std:
     result.imbalance = tangential > 0. ? HUGE_VAL : 0.;
     result.rounding_floor = HUGE_VAL;
   }
+  result.chordal_imbalance = chordal_scale > 0. ? tangential / chordal_scale : result.imbalance;
   if(!(result.imbalance == result.imbalance)) result.imbalance = HUGE_VAL;  // NaN positions are never balanced
+  if(!(result.chordal_imbalance == result.chordal_imbalance)) result.chordal_imbalance = HUGE_VAL;
   return result;
 }
 
-// A scale-free measure of how far the whole map is from balanced: the root mean square of the imbalances e_i.
+// A scale-free measure of how far the whole map is from balanced: the root mean square of the imbalances (with
+// chords, see Vertex_imbalance::chordal_imbalance).
 // The paper's Res measures the forces in absolute terms, so any shrinking of the map lowers it and the trivial
 // collapse onto a point has Res = 0: the iterate of lowest Res, or a line search on Res, can prefer a collapse
 // (CGAL's handle and sphere966 ended collapsed onto a point, Res 1e-17, max imbalance 0.44 and 0.56). A collapse
@@ -330,7 +357,7 @@ inline double imbalance_merit(const Sphere_system& system, const std::vector<Vec
 {
   double sum = 0.;
   for(std::size_t i = 0; i < system.number_of_vertices; ++i) {
-    const double e = vertex_imbalance(system, x, i).imbalance;
+    const double e = vertex_imbalance(system, x, i).chordal_imbalance;
     sum += e * e;
   }
   return std::sqrt(sum / static_cast<double>(std::max<std::size_t>(system.number_of_vertices, 1)));
@@ -338,10 +365,10 @@ inline double imbalance_merit(const Sphere_system& system, const std::vector<Vec
 
 struct Imbalance_summary {
   double max = 0.;                          // max_i e_i
-  double rms = 0.;                          // the root mean square of e_i (imbalance_merit)
+  double rms = 0.;                          // the root mean square of the merits given (imbalance_merit: chordal)
   double percentile_99 = 0.;                // the 99th percentile of e_i (when the values were asked for)
   double worst_ratio = 0.;                  // max_i e_i / max(tolerance, rounding_floor_i): <= 1 when balanced
-  std::size_t unbalanced_vertices = 0;      // e_i > max(tolerance, rounding_floor_i)
+  std::size_t unbalanced_vertices = 0;      // e_i > max(tolerance, rounding_floor_i), or rounding_floor_i > max_rounding_floor
   std::size_t vertices_at_rounding_floor = 0; // rounding_floor_i > tolerance: tested against their floor
   bool balanced() const { return unbalanced_vertices == 0; }
 };
@@ -350,14 +377,16 @@ struct Imbalance_summary {
 class Imbalance_accumulator {
 public:
   explicit Imbalance_accumulator(double tolerance) : tolerance_(tolerance) {}
-  void add(double value, double rounding_floor)
+  // `merit`: what the root mean square adds up (by default the value itself).
+  void add(double value, double rounding_floor, double merit = -1.)
   {
     ++count_;
-    sum_of_squares_ += value * value;
+    sum_of_squares_ += merit >= 0. ? merit * merit : value * value;
     const double allowed = std::max(tolerance_, rounding_floor);
+    const bool measurable = rounding_floor <= max_rounding_floor;
     summary_.max = std::max(summary_.max, value);
     summary_.worst_ratio = std::max(summary_.worst_ratio, allowed > 0. ? value / allowed : (value > 0. ? HUGE_VAL : 0.));
-    summary_.unbalanced_vertices += !(value <= allowed);
+    summary_.unbalanced_vertices += !(measurable && value <= allowed);
     summary_.vertices_at_rounding_floor += rounding_floor > tolerance_;
   }
   Imbalance_summary summary() const
@@ -384,7 +413,7 @@ inline Imbalance_summary summarize_imbalance(const Sphere_system& system, const 
   for(std::size_t i = 0; i < n; ++i) {
     const Vertex_imbalance v = vertex_imbalance(system, x, i);
     if(values != nullptr) (*values)[i] = v.imbalance;
-    accumulator.add(v.imbalance, v.rounding_floor);
+    accumulator.add(v.imbalance, v.rounding_floor, v.chordal_imbalance);
   }
   Imbalance_summary summary = accumulator.summary();
   if(n > 0 && values != nullptr) {
@@ -399,12 +428,13 @@ inline Imbalance_summary summarize_imbalance(const Sphere_system& system, const 
 // The stationarity of the least-squares problem of non-symmetric weights (mean value), whose balance equations
 // generally have no exact solution: the 2n tangential equations are 3 more than the unknowns modulo rotations once
 // the three torque identities of symmetric weights fail. The map then minimizes the imbalances themselves,
-//   Psi = 1/2 sum_i e_i^2,   e_i = |F_i| / l_i,   F_i = P_i sum_j w_ij (x_j - x_i),   l_i = sum_j |w_ij| |x_j - x_i|
-// (imbalance_least_squares.h): each vertex in its own scale, as the convergence test measures it. (The absolute
+//   Psi = 1/2 sum_i e_i^2,   e_i = |F_i| / l_i,   F_i = P_i sum_j w_ij (x_j - x_i),   l_i = sum_j |w_ij| s(c_ij)
+// with c_ij = |x_j - x_i| and s the tangential edge length of vertex_imbalance (imbalance_least_squares.h): each
+// vertex in its own scale, as the convergence test measures it. (The absolute
 // residuals' problem, min sum_i |F_i|^2, is solved by the collapse onto a point: its iterations drifted along the
-// boosts towards it and stalled; see the manual.) With alpha_k = sum_j w_kj x_k . x_j, U_k = sum_j |w_kj| u_kj and
-// u_kj the unit vector from x_k to x_j, the gradient at vertex k is the tangential part of
-//   -alpha_k F_k / l_k^2 + |F_k|^2 U_k / l_k^3 + sum_{j: k in N(j)} (w_jk F_j / l_j^2 - |w_jk| |F_j|^2 u_jk / l_j^3).
+// boosts towards it and stalled; see the manual.) With alpha_k = sum_j w_kj x_k . x_j, U_k = sum_j |w_kj| s'(c_kj) u_kj
+// and u_kj the unit vector from x_k to x_j, the gradient at vertex k is the tangential part of
+//   -alpha_k F_k / l_k^2 + |F_k|^2 U_k / l_k^3 + sum_{j: k in N(j)} (w_jk F_j / l_j^2 - |w_jk| s'(c_jk) |F_j|^2 u_jk / l_j^3).
 // In the scale of the imbalance, sigma_k = |grad_k Psi| / S_k with S_k = |alpha_k| / l_k + sum_{j: k in N(j)}
 // |w_jk| / l_j: the size the gradient would have if every e_i of its terms were 1. Balanced maps have sigma = 0.
 // Its rounding floor is the imbalance's, carried through the same terms.
@@ -433,9 +463,10 @@ inline void compute_least_squares_terms(const Sphere_system& system, const std::
       const double length_e = length(e);
       d += w * e;
       a += w * (1. - 0.5 * squared_length(e));
-      l += std::abs(w) * length_e;
+      const double tangential_e = tangential_edge_length(x[i], e);
+      l += std::abs(w) * tangential_e;
       m += std::abs(w);
-      if(length_e > 0.) u += (std::abs(w) / length_e) * e;
+      if(length_e > 0.) u += (std::abs(w) * tangential_edge_length_derivative(length_e, tangential_e) / length_e) * e;
     }
     terms.force[i] = tangential_part(x[i], d);
     terms.pull[i] = u;
@@ -499,7 +530,9 @@ inline Imbalance_summary summarize_stationarity(const Sphere_system& system, con
       const Vector3 edge = x[k] - x[j];
       const double length_edge = length(edge);
       g += (w / (lj * lj)) * terms.force[j];
-      if(length_edge > 0.) g -= (std::abs(w) * squared_length(terms.force[j]) / (lj * lj * lj * length_edge)) * edge;
+      if(length_edge > 0.)
+        g -= (std::abs(w) * tangential_edge_length_derivative(length_edge, tangential_edge_length(x[j], edge)) *
+              squared_length(terms.force[j]) / (lj * lj * lj * length_edge)) * edge;
     }
     return length(tangential_part(x[k], g));
   });
@@ -524,7 +557,7 @@ inline Map_measure measure_map(const Sphere_system& system, const std::vector<Ve
   for(std::size_t i = 0; i < n; ++i) {
     const Vertex_imbalance v = vertex_imbalance(system, x, i);
     squared_residuals += v.squared_residual;
-    accumulator.add(v.imbalance, v.rounding_floor);
+    accumulator.add(v.imbalance, v.rounding_floor, v.chordal_imbalance);
   }
   measure.imbalance = accumulator.summary();
   measure.residual = std::sqrt(squared_residuals) / static_cast<double>(std::max<std::size_t>(n, 1));

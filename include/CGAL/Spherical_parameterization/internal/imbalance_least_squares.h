@@ -2,8 +2,9 @@
 // equations are three too many and in general have no exact solution.
 //
 // It minimizes the imbalances themselves, each in its own scale:
-//   Psi(x) = 1/2 sum_i |r_i|^2,   r_i = F_i / l_i,   F_i = P_i sum_j w_ij (x_j - x_i),   l_i = sum_j |w_ij| |x_j - x_i|
-// (normalized weights, P_i the projection on the tangent plane at x_i), so |r_i| = e_i, the imbalance of the
+//   Psi(x) = 1/2 sum_i |r_i|^2,   r_i = F_i / l_i,   F_i = P_i sum_j w_ij (x_j - x_i),   l_i = sum_j |w_ij| s(c_ij)
+// (normalized weights, P_i the projection on the tangent plane at x_i, s(c_ij) the tangential length of the edge of
+// chord c_ij = |x_j - x_i|, see vertex_imbalance), so |r_i| = e_i, the imbalance of the
 // convergence test. Where a balanced map exists, it is the minimum (Psi = 0). Unlike the absolute residuals, whose
 // least-squares problem the collapse onto a point solves (every F_i -> 0), Psi is scale-free: a collapse keeps the
 // imbalances near 0.5, so the iterations are not drawn along the boosts towards it.
@@ -103,13 +104,13 @@ public:
       const double f[2] = {dot(t1_[i], terms_.force[i]) / l, dot(t2_[i], terms_.force[i]) / l};  // r_i in the frame
       residual_[Eigen::Index(2 * i)] = f[0];
       residual_[Eigen::Index(2 * i + 1)] = f[1];
-      // d r_i / d x_i = -alpha_i / l_i I + r_i (T_i^T U_i)^T / l_i, U_i = sum_j |w_ij| (x_j - x_i) / |x_j - x_i|.
+      // d r_i / d x_i = -alpha_i / l_i I + r_i (T_i^T U_i)^T / l_i, U_i = sum_j |w_ij| s'(c_ij) (x_j - x_i) / c_ij.
       const double u[2] = {dot(t1_[i], terms_.pull[i]) / l, dot(t2_[i], terms_.pull[i]) / l};
       values[diagonal[0]] = -terms_.alpha[i] / l + f[0] * u[0];
       values[diagonal[1]] = f[0] * u[1];
       values[diagonal[2]] = f[1] * u[0];
       values[diagonal[3]] = -terms_.alpha[i] / l + f[1] * u[1];
-      // d r_i / d x_j = w_ij / l_i T_i^T T_j - |w_ij| r_i (T_j^T u_ij)^T / l_i, u_ij the unit edge vector.
+      // d r_i / d x_j = w_ij / l_i T_i^T T_j - |w_ij| s'(c_ij) r_i (T_j^T u_ij)^T / l_i, u_ij the unit edge vector.
       for(std::size_t k = system_.offsets[i]; k < system_.offsets[i + 1]; ++k) {
         const std::size_t j = static_cast<std::size_t>(system_.neighbors[k]);
         const double w = system_.weights[k];
@@ -117,7 +118,7 @@ public:
         const double length_e = length(e);
         const double v[2] = {length_e > 0. ? dot(t1_[j], e) / length_e : 0., length_e > 0. ? dot(t2_[j], e) / length_e : 0.};
         const std::array<std::size_t, 4>& slot = block_slots_[k];
-        const double c = std::abs(w) / l;
+        const double c = std::abs(w) * tangential_edge_length_derivative(length_e, tangential_edge_length(x[i], e)) / l;
         values[slot[0]] = w / l * dot(t1_[i], t1_[j]) - c * f[0] * v[0];
         values[slot[1]] = w / l * dot(t1_[i], t2_[j]) - c * f[0] * v[1];
         values[slot[2]] = w / l * dot(t2_[i], t1_[j]) - c * f[1] * v[0];

@@ -173,8 +173,8 @@ inline Iteration_report mobius_newton(Sphere_state& state, const Iteration_optio
     if(!allow_folds && short_steps >= patience) { counts.gave_up = true; break; }
   }
   Iteration_report& report = driver.report();
-  // A collapse onto a great circle can pass the orientation test with a small residual; the areas expose it,
-  // and then none of these iterates is trusted.
+  // A converged map that the certificate rejects (a degenerate collapse with a degree other than 1): none of these
+  // iterates is trusted.
   if(!counts.gave_up && driver.converged() && !certify(system.triangles, x).bijective) {
     counts.gave_up = true;
     driver.restore(start);

@@ -117,9 +117,10 @@ struct Sphere_certificate {
 
 // Bijective iff every triangle is positive and a generic point is covered exactly once: an orientation-preserving
 // map of a sphere onto the sphere is a branched covering, and degree 1 leaves no room for branch points or
-// multiple coverings. Both are decided by exact predicates. The total area must be 4 pi as well (within pi: with
-// every triangle positive it is 4 pi times the degree); with the ill-conditioned areas evaluated exactly, the two
-// tests agree on every map, and the area stays as a check of the check.
+// multiple coverings. Both are decided by exact predicates on x, so two certificates of the same points agree.
+// The total area (4 pi times the degree when every triangle is positive) is reported, not decisive: on a map whose
+// points sit within rounding of two antipodal points, the exact areas of the same triangles after a renormalization
+// by one ulp differ by up to 2 pi each (found by the fuzzer).
 // `unit`: where the areas are measured, when x is not on the unit sphere (the user's map, radially projected);
 // the exact tests run on x itself, and their verdict also gives the sign of each area, because projecting can
 // move a triangle along a great circle across atan2's branch cut (found by the fuzzer).
@@ -135,9 +136,7 @@ inline Sphere_certificate certify(const std::vector<std::array<int, 3>>& triangl
     if(!positive) ++certificate.flipped_faces;
     certificate.total_signed_area += signed_spherical_area(on_sphere[i], on_sphere[j], on_sphere[k], positive);
   }
-  const double pi = 3.14159265358979323846;
-  certificate.bijective = certificate.flipped_faces == 0 && std::abs(certificate.total_signed_area - 4. * pi) < pi &&
-                          covering_number(triangles, x) == 1;
+  certificate.bijective = certificate.flipped_faces == 0 && covering_number(triangles, x) == 1;
   return certificate;
 }
 
