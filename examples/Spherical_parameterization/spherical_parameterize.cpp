@@ -123,8 +123,9 @@ void print_usage(std::ostream& out)
          "Progress goes to stderr once a run takes more than a second: stage, iteration, Res, non-positive\n"
          "faces, elapsed time; on a terminal as one line rewritten in place, otherwise at most a line a second.\n"
          "Ctrl-C, SIGTERM or SIGHUP (job schedulers, timeout) during the iterations stops them and writes the\n"
-         "best map so far (exit 1); before the iterations it ends the run at once (nothing written); a second\n"
-         "signal quits at once. The output file is only ever replaced whole.\n"
+         "best map so far (exit 1), unless they are inside a step that does not stop within 1.2 s (a long\n"
+         "factorization: then nothing is written); before the iterations it ends the run at once (nothing\n"
+         "written); a second signal quits at once. The output file is only ever replaced whole.\n"
          "Options also take the form --option=VALUE.\n"
          "\n"
          "Examples:\n"
@@ -149,8 +150,8 @@ void print_usage(std::ostream& out)
          "\n"
          "Exit status: 0 success (converged and certified bijective); 1 not converged or not bijective (the\n"
          "best map found is written); 2 invalid mesh (nothing written); 3 file error; 4 usage error;\n"
-         "128 + the signal's number (130 Ctrl-C, 143 SIGTERM, 129 SIGHUP) stopped before the iterations or\n"
-         "by a second signal (nothing written).\n";
+         "128 + the signal's number (130 Ctrl-C, 143 SIGTERM, 129 SIGHUP) stopped before the iterations, in\n"
+         "a step that did not stop within 1.2 s, or by a second signal (nothing written).\n";
 }
 
 using Clock = std::chrono::steady_clock;
@@ -163,10 +164,16 @@ double seconds_since(Clock::time_point start) { return std::chrono::duration<dou
 // process ends at once (nothing written, exit 128 + signal). During the iterations the first signal asks them to
 // stop and the best map is written (exit 1); during the writing it lets the writing finish. A second signal ends
 // the process at once, removing the temporary file of a writing under way (the output itself is only ever replaced
-// whole, by a rename).
+// whole, by a rename). The iterations stop at their next check, within about a second, but one step can be a single
+// factorization that cannot be interrupted (a least-squares step of mean-value weights: 25 s on a 164k-vertex
+// cortex), and schedulers wait little after their SIGTERM: if the library has not returned after
+// `stop_grace`, the run ends as before the iterations (nothing written, exit 128 + signal).
 enum Run_phase { SETTING_UP, ITERATING, WRITING };
 std::atomic<int> stop_signal{0};
 std::atomic<int> run_phase{SETTING_UP};
+std::mutex phase_mutex;  // held by the grace's end: once the writing starts, it no longer ends the run
+std::condition_variable phase_changed;
+constexpr std::chrono::milliseconds stop_grace(1200);
 std::mutex temporary_file_mutex;
 std::string temporary_file;  // the file being written, if any
 
@@ -212,8 +219,24 @@ void start_signal_watcher()
       if(stop_signal.load() != 0) end_now(signal, "stopped again");
       stop_signal = signal;
       if(run_phase.load() == SETTING_UP) end_now(signal, "interrupted before the iterations");
+      // Its own thread, so that this one goes on waiting for a second signal.
+      std::thread([signal] {
+        std::unique_lock<std::mutex> lock(phase_mutex);
+        if(!phase_changed.wait_for(lock, stop_grace, [] { return run_phase.load() != ITERATING; }))
+          end_now(signal, "the iterations did not stop within 1.2 s (a long factorization)");
+      }).detach();
     }
   }).detach();
+}
+
+// From now on a stop signal lets the writing finish.
+void start_writing_phase()
+{
+  {
+    std::lock_guard<std::mutex> lock(phase_mutex);
+    run_phase = WRITING;
+  }
+  phase_changed.notify_all();
 }
 
 // The progress line on stderr: rewritten in place on a terminal, otherwise at most one line a second.
@@ -402,7 +425,9 @@ void print_json(std::ostream& out, const SP::Result& r, const Run_figures& run)
     {"input", json_string(run.input)},
     {"output", run.output.empty() ? std::string("null") : json_string(run.output)},
     {"status", json_string(SP::get_error_name(r.status))},
-    {"success", boolean(r.status == SP::Error_code::OK)},
+    // Exactly when the exit status is 0: a map certified in double precision whose float32 (or scaled) coordinates
+    // as written fold a triangle is no success, and tables built from these lines must not count it as one.
+    {"success", boolean(r.status == SP::Error_code::OK && !(run.written.certified && !run.written.bijective))},
     {"skipped", boolean(run.skipped)},
     {"message", json_string(r.message)},
     {"vertices", std::to_string(r.number_of_vertices)},
@@ -1190,7 +1215,7 @@ int main(int argc, char** argv)
       settings.sparse_lu ? SP::spherical_parameterize<Concurrency>(mesh, sphere_map, SP::parameters::combine(parameters, CGAL::parameters::sparse_linear_solver(SP::Sparse_LU_disk_solver_traits())))
                          : SP::spherical_parameterize<Concurrency>(mesh, sphere_map, parameters);
   run.map_seconds = seconds_since(map_start);
-  run_phase = WRITING;  // a stop signal from now on lets the writing finish
+  start_writing_phase();
 
   const bool has_map = result.number_of_vertices > 0 && result.residual >= 0.;
   if(has_map) {

@@ -71,5 +71,10 @@ PY
 [ "$(wc -l < table.tsv)" = 7 ] || fail "gather_runs.py: expected a header and 6 rows: $(cat table.tsv)"
 grep -q "6 surface(s): OK 6" gather.err || fail "gather_runs.py summary: $(cat gather.err)"
 awk -F'\t' 'NR > 1 && ($3 != "OK" || $7 == "" || $11 != "True") { exit 1 }' table.tsv || fail "gather_runs.py rows: $(cat table.tsv)"
+# A map certified in double precision whose float32 output folds a triangle (exit 1, JSON "written": {"bijective":
+# false}, as man.off to FreeSurfer does) is not counted as OK.
+printf '%s\n' '{"format": "spherical_parameterize/1", "input": "man.off", "output": "man.sphere", "status": "OK", "success": false, "skipped": false, "vertices": 17495, "faces": 34986, "weights": "uniform", "max_imbalance": 1e-9, "flipped_faces": 0, "written": {"format": "freesurfer", "precision": "float32", "radius": 1, "flipped_faces": 1, "bijective": false}, "seconds": {"read": 0.1, "map": 1.0, "write": 0.1, "total": 1.2}}' > folded.jsonl
+/usr/bin/python3 "$scripts/gather_runs.py" folded.jsonl > folded.tsv 2> folded.err && fail "gather_runs.py: a folded float32 output counted as OK"
+grep -q "OK_FOLDED_AS_WRITTEN" folded.tsv || fail "gather_runs.py: the folded output's status: $(cat folded.tsv)"
 [ $failures = 0 ] && echo "ok: cohort recipe (GNU parallel, a killed job, re-runs), Slurm array script, gather_runs.py"
 exit $((failures > 0))

@@ -68,6 +68,17 @@ Xk, infok = sp.map_to_sphere(Vk, Fk, criterion="paper", tolerance=1e-300, max_se
 check(infok["status"] == "CANCELLED" and len(stages) >= 2 and Xk.shape == Vk.shape and stages[-1][1] < 3,
       "progress and cancel: %s after %d reports, %.2f s" % (infok["status"], len(stages), stages[-1][1] if stages else -1))
 
+# Mean-value weights (default criterion): their least-squares iterations send no report of their own, yet the
+# callable is still asked (koala's iterations go on past 30 s; before the fix they could not be cancelled).
+asked = []
+def stop_after_stage_1(stage, iteration, residual, non_positive, seconds):
+    asked.append(seconds)
+    return len(asked) == 1
+start = time.monotonic()
+Xm, infom = sp.map_to_sphere(Vk, Fk, weights="mean_value", max_seconds=30, progress=stop_after_stage_1)
+check(infom["status"] == "CANCELLED" and len(asked) >= 2 and time.monotonic() - start < asked[0] + 5 and Xm.shape == Vk.shape,
+      "mean-value weights cancelled after stage 1: %s after %d reports, %.2f s" % (infom["status"], len(asked), time.monotonic() - start))
+
 # The GIL is released during the work: another Python thread keeps running.
 ticks = [0]
 stop = threading.Event()

@@ -1457,6 +1457,36 @@ TEST(Progress, CallbackFollowsTheStagesAndCancels)
   }
 }
 
+// Mean-value weights go from stage 1 to the least-squares iterations, which send no report of their own: the
+// callback must still be asked (the stage-1 report repeated, every half second) so that a cancel takes effect. On
+// cow.off they run until the time budget (known failure), so without those repeats the call ends NOT_CONVERGED
+// after the whole budget (as the command line did after a SIGTERM: minutes on man.off).
+TEST(Progress, CancelsTheLeastSquaresIterationsOfMeanValueWeights)
+{
+  const Mesh mesh = read_mesh(cgal_data + "/cow.off");
+  std::vector<double> seconds;
+  double asked_to_stop = -1.;
+  auto cancel_after_stage_1 = [&](const SP::Progress& progress) {
+    seconds.push_back(progress.seconds);
+    if(seconds.size() == 1) return true;  // the end of stage 1
+    if(asked_to_stop < 0.) asked_to_stop = progress.seconds;
+    return false;
+  };
+  std::map<Mesh::Vertex_index, Point> positions;
+  const auto start = std::chrono::steady_clock::now();
+  const SP::Result result = SP::spherical_parameterize(
+      mesh, boost::make_assoc_property_map(positions),
+      SP::parameters::combine(SP::parameters::weighting(SP::Weighting::MEAN_VALUE), SP::parameters::max_seconds(20.),
+                              SP::parameters::progress_callback(cancel_after_stage_1)));
+  const double elapsed = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  ASSERT_GE(seconds.size(), 2u) << "the callback was not asked after stage 1; status " << SP::get_error_name(result.status);
+  EXPECT_EQ(result.status, SP::Error_code::CANCELLED) << result.message;
+  EXPECT_LT(asked_to_stop - seconds.front(), 1.5);  // polled at most every half second, plus one step
+  EXPECT_LT(elapsed - asked_to_stop, 2.);
+  ASSERT_EQ(positions.size(), mesh.number_of_vertices());
+  EXPECT_EQ(result.flipped_faces, 0u);
+}
+
 // Exact points are read through the geometric traits and give the same sphere as their double conversion.
 TEST(SphericalParameterize, ExactKernelPoints)
 {

@@ -244,7 +244,12 @@ Result spherical_parameterize(const TriangleMesh& tm, VertexSphereMap vsm,
   if(user_callback || options.verbose) {
     const bool verbose = options.verbose;
     auto last_print = std::make_shared<double>(-1.);
-    options.report = [user_callback, verbose, last_print](const Progress& progress) {
+    // The last report sent, which the polls below repeat: the stage-level one (the end of stage 1) counts too, since
+    // the least-squares iterations of non-symmetric weights send none of their own (before, their polls found no
+    // report to repeat and never asked, so a cancel or a stop signal waited for the end of the run: minutes).
+    auto last = std::make_shared<Progress>();
+    options.report = [user_callback, verbose, last_print, last](const Progress& progress) {
+      *last = progress;
       if(verbose && progress.iteration > 0 && progress.seconds - *last_print >= 1.) {
         *last_print = progress.seconds;
         std::cerr << "  " << progress.stage << " iteration " << progress.iteration << ": Res " << progress.residual
@@ -252,7 +257,6 @@ Result spherical_parameterize(const TriangleMesh& tm, VertexSphereMap vsm,
       }
       return !user_callback || user_callback(progress);
     };
-    auto last = std::make_shared<Progress>();
     options.iterations.progress = [report = options.report, clock, last](const char* stage, std::size_t sweep, double residual,
                                                                           std::size_t invalid) {
       last->stage = stage;
