@@ -393,6 +393,12 @@ inline Least_squares_report imbalance_least_squares(Sphere_state& state, const I
       }
     }
     last_step_seconds = clock.seconds() - step_start;
+    // One report per step, as the other stage-3 solvers send (their Iteration_driver): the progress line, and the
+    // user's callback, whose false cancels.
+    if(options.progress && !options.progress("global newton", report.steps, compute_residuals(system, x).paper, 0)) {
+      report.cancelled = true;
+      break;
+    }
     const double psi = problem.evaluate(x, 0.);
     if(psi < best_psi) { best_psi = psi; best = x; }
     if(mu > 0.) problem.evaluate(x, mu);  // linearize() reads the terms of x
