@@ -244,9 +244,10 @@ Result spherical_parameterize(const TriangleMesh& tm, VertexSphereMap vsm,
   if(user_callback || options.verbose) {
     const bool verbose = options.verbose;
     auto last_print = std::make_shared<double>(-1.);
-    // The last report sent, which the polls below repeat: the stage-level one (the end of stage 1) counts too, since
-    // the least-squares iterations of non-symmetric weights send none of their own (before, their polls found no
-    // report to repeat and never asked, so a cancel or a stop signal waited for the end of the run: minutes).
+    // The last report sent, which the polls below repeat: the stage-level one (the end of stage 1) counts too, so
+    // that the polls ask from the start of stage 3 (before, a solver's first step could be a long factorization
+    // with no report yet to repeat: the least-squares iterations of mean-value weights waited for the end of the
+    // run, minutes, when they sent no reports at all).
     auto last = std::make_shared<Progress>();
     options.report = [user_callback, verbose, last_print, last](const Progress& progress) {
       *last = progress;
