@@ -14,6 +14,7 @@
 #include <CGAL/Spherical_parameterization/parameters.h>
 
 #include <CGAL/Named_function_parameters.h>
+#include <CGAL/Real_timer.h>
 #include <CGAL/boost/graph/named_params_helper.h>
 #include <CGAL/property_map.h>
 #include <CGAL/tags.h>
@@ -204,7 +205,8 @@ Result spherical_parameterize(const TriangleMesh& tm, VertexSphereMap vsm,
   using CGAL::parameters::get_parameter;
   using CGAL::parameters::is_default_parameter;
 
-  internal::Stopwatch clock;
+  CGAL::Real_timer clock;
+  clock.start();
   auto vim = CGAL::get_initialized_vertex_index_map(tm, np);
   internal::Mesh_arrays mesh = internal::read_mesh_arrays(tm, vim, np);
   const Input_check check = internal::check_mesh_arrays(mesh);
@@ -263,7 +265,7 @@ Result spherical_parameterize(const TriangleMesh& tm, VertexSphereMap vsm,
       last->iteration = sweep;
       last->residual = residual;
       last->non_positive_faces = invalid;
-      last->seconds = clock.seconds();
+      last->seconds = clock.time();
       return report(*last);
     };
     // Inside an iteration that lasts (a Levenberg-Marquardt step with several factorizations, a Newton step on a
@@ -271,7 +273,7 @@ Result spherical_parameterize(const TriangleMesh& tm, VertexSphereMap vsm,
     // cancellation takes effect within about a second.
     auto last_poll = std::make_shared<double>(0.);
     options.iterations.keep_going = [report = options.report, clock, last, last_poll]() {
-      const double now = clock.seconds();
+      const double now = clock.time();
       if(*last->stage == '\0' || now - *last_poll < 0.5) return true;
       *last_poll = now;
       last->seconds = now;
@@ -342,7 +344,7 @@ Result spherical_parameterize(const TriangleMesh& tm, VertexSphereMap vsm,
       put(vsm, v, Point(p.x, p.y, p.z));
     }
   }
-  result.total_seconds = clock.seconds();
+  result.total_seconds = clock.time();
   return result;
 }
 

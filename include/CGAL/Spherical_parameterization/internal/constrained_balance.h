@@ -266,7 +266,7 @@ private:
 // the last one (mu = tuning.barrier_final_fraction * tolerance) at the tolerance. A phase also ends when
 // tuning.barrier_patience steps in a row had to be cut below a quarter or when no step lowers the merit; `reached`
 // says whether the last one met the tolerance. Every iterate is bijective.
-inline Constrained_balance_report constrained_balance(Sphere_state& state, const Iteration_options& options, const Stopwatch& clock)
+inline Constrained_balance_report constrained_balance(Sphere_state& state, const Iteration_options& options, const CGAL::Real_timer& clock)
 {
   const Solver_tuning& tuning = options.tuning;
   Constrained_balance_report report;

@@ -212,7 +212,7 @@ private:
 // Stagnation: non-symmetric weights (mean value) generally admit no exact solution, because the three torque
 // identities that make the equations consistent for symmetric weights fail; the residual then levels off at a
 // least-squares floor (tuning.cautious_stagnation_window).
-inline Iteration_report cautious_newton(Sphere_state& state, const Iteration_options& options, const Stopwatch& clock)
+inline Iteration_report cautious_newton(Sphere_state& state, const Iteration_options& options, const CGAL::Real_timer& clock)
 {
   const Solver_tuning& tuning = options.tuning;
   Iteration_driver driver(state, options, clock, "global newton", options.max_newton_sweeps);
@@ -252,7 +252,7 @@ inline bool has_tutte_weights(const Sphere_system& system)
 // from the same map with the line search on the scale-free imbalances instead of Res (see Step_merit: Res led
 // some steps along the boosts towards a collapse). The first phase from the two-disk guess and on each multilevel
 // level (`boost_aim`: Boost_aim::ROOT there). The reports of both attempts are added up.
-inline Iteration_report full_newton_steps(Sphere_state& state, const Iteration_options& options, const Stopwatch& clock,
+inline Iteration_report full_newton_steps(Sphere_state& state, const Iteration_options& options, const CGAL::Real_timer& clock,
                                           Boost_aim boost_aim = Boost_aim::MAXIMUM)
 {
   const std::vector<Vector3> start = state.positions();
@@ -270,7 +270,7 @@ inline Iteration_report full_newton_steps(Sphere_state& state, const Iteration_o
 // imbalances in their own scale, after at most 50 cautious Newton steps where the map has non-positive faces (they
 // start from a bijective map). With the paper's criterion (Res, whose least-squares problem the collapse solves), the
 // cautious Newton alone, as the paper's test asks.
-inline Iteration_report least_squares_newton(Sphere_state& state, const Iteration_options& options, const Stopwatch& clock)
+inline Iteration_report least_squares_newton(Sphere_state& state, const Iteration_options& options, const CGAL::Real_timer& clock)
 {
   if(options.convergence_test == Convergence_test::PAPER_RESIDUAL) return cautious_newton(state, options, clock);
   Iteration_report report;
@@ -296,7 +296,7 @@ inline Iteration_report least_squares_newton(Sphere_state& state, const Iteratio
 // Stage 3. Symmetric weights: Newton's steps through folds, then the bijectivity-preserving Moebius-aware Newton; if it gives up and the weights are not Tutte's, the
 // continuation from Tutte's weights; if that fails too, the cautious Newton from the best iterate so far.
 // Non-symmetric weights: least_squares_newton().
-inline Iteration_report global_newton(Sphere_state& state, const Iteration_options& options, const Stopwatch& clock,
+inline Iteration_report global_newton(Sphere_state& state, const Iteration_options& options, const CGAL::Real_timer& clock,
                                       const std::vector<Vector3>* initial_guess = nullptr)
 {
   const Sphere_system& system = state.system();

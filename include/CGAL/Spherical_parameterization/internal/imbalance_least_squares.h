@@ -300,7 +300,7 @@ struct Least_squares_report {
 // tuning.barrier_final_fraction times the tolerance, each with c_f set at its start, solved to
 // max(tolerance, tuning.barrier_phase_factor mu), for at most tuning.least_squares_phase_steps steps. Every iterate
 // is bijective; the one of least Psi (root mean square imbalance) is returned when the test is not met.
-inline Least_squares_report imbalance_least_squares(Sphere_state& state, const Iteration_options& options, const Stopwatch& clock)
+inline Least_squares_report imbalance_least_squares(Sphere_state& state, const Iteration_options& options, const CGAL::Real_timer& clock)
 {
   Least_squares_report report;
   const Solver_tuning& tuning = options.tuning;
@@ -334,11 +334,11 @@ inline Least_squares_report imbalance_least_squares(Sphere_state& state, const I
     // A step is one sparse LU that cannot be interrupted (seconds on brain cortices): none is started that the
     // previous one's duration says would end past the budget.
     if(past_time_budget(options, clock) ||
-       (options.max_seconds >= 0. && clock.seconds() + last_step_seconds > options.max_seconds)) {
+       (options.max_seconds >= 0. && clock.time() + last_step_seconds > options.max_seconds)) {
       report.out_of_time = true;
       break;
     }
-    const double step_start = clock.seconds();
+    const double step_start = clock.time();
     if(options.cancel_requested()) { report.cancelled = true; break; }
     if(report.steps >= options.max_newton_sweeps) break;
     problem.linearize(x, mu);
@@ -392,7 +392,7 @@ inline Least_squares_report imbalance_least_squares(Sphere_state& state, const I
         lambda = std::min(lambda * 10., tuning.marquardt_max);
       }
     }
-    last_step_seconds = clock.seconds() - step_start;
+    last_step_seconds = clock.time() - step_start;
     const double psi = problem.evaluate(x, 0.);
     if(psi < best_psi) { best_psi = psi; best = x; }
     if(mu > 0.) problem.evaluate(x, mu);  // linearize() reads the terms of x

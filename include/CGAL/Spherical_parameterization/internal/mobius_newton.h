@@ -59,7 +59,7 @@ inline bool has_degree_one(const Sphere_system& system, const std::vector<Vector
 // towards a collapse (CGAL's handle). The imbalances (imbalance_merit) are scale-free: a collapse does not lower them.
 enum class Step_merit { RESIDUAL, IMBALANCE };
 
-inline Iteration_report mobius_newton(Sphere_state& state, const Iteration_options& options, const Stopwatch& clock,
+inline Iteration_report mobius_newton(Sphere_state& state, const Iteration_options& options, const CGAL::Real_timer& clock,
                                       Mobius_newton_statistics* statistics = nullptr, std::size_t patience = 3,
                                       bool allow_folds = false, Step_merit step_merit = Step_merit::RESIDUAL,
                                       Boost_aim boost_aim = Boost_aim::MAXIMUM)

@@ -23,7 +23,7 @@ namespace internal {
 
 // Paper, Section 3.2, with lambda = 1: x_i <- s_i / |s_i| in turn, while Res decreases. The last iterate whose
 // residual did not grow is kept.
-inline Iteration_report projected_gauss_seidel(Sphere_state& state, const Iteration_options& options, const Stopwatch& clock)
+inline Iteration_report projected_gauss_seidel(Sphere_state& state, const Iteration_options& options, const CGAL::Real_timer& clock)
 {
   Iteration_driver driver(state, options, clock, "gauss-seidel", options.max_gauss_seidel_sweeps);
   const Sphere_system& system = state.system();
@@ -124,7 +124,7 @@ inline bool local_newton_step(Sphere_state& state, std::size_t i, bool preserve)
 
 // The paper's stage 3: local Newton sweeps until the convergence test holds, no vertex moves, or 1000 sweeps gained
 // less than 1% in all; when it does not converge, the best iterate is returned.
-inline Iteration_report local_newton(Sphere_state& state, const Iteration_options& options, const Stopwatch& clock)
+inline Iteration_report local_newton(Sphere_state& state, const Iteration_options& options, const CGAL::Real_timer& clock)
 {
   Iteration_driver driver(state, options, clock, "local newton", options.max_newton_sweeps);
   driver.watch_stagnation(options.tuning.local_stagnation_window);

@@ -46,7 +46,7 @@ inline void blend_with_tutte(const Sphere_system& target, double s, Sphere_syste
 // Each solution along the path is computed to the caller's test (to `path_tolerance` when that is the paper's Res). On failure x holds the solution at report.last_parameter (or, if even
 // Tutte's weights failed, whatever Newton's best iterate was).
 inline Continuation_report weight_continuation(const Sphere_system& target, std::vector<Vector3>& x,
-                                               const Iteration_options& options, const Stopwatch& clock,
+                                               const Iteration_options& options, const CGAL::Real_timer& clock,
                                                const std::vector<Vector3>* initial_guess = nullptr,
                                                double path_tolerance = 1e-13, std::size_t patience = 20)
 {
