@@ -107,7 +107,7 @@ System mesh_disk_system(const std::string& path, bool mean_value)
   std::vector<char> is_border(mesh.number_of_vertices(), 0);
   for(std::size_t k = 0; k < border.size(); ++k)
   {
-    const double angle = 2. * M_PI * double(k) / double(border.size());
+    const double angle = 2. * CGAL_PI * double(k) / double(border.size());
     uv[border[k]] = Eigen::Vector2d(std::cos(angle), std::sin(angle));
     is_border[border[k]] = 1;
   }

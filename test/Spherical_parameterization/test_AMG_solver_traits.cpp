@@ -99,7 +99,7 @@ Disk_system build_disk_system(const Mesh& mesh, Weighting weighting, bool keep_b
   std::vector<char> is_border(mesh.number_of_vertices(), 0);
   for(std::size_t k = 0; k < border.size(); ++k)
   {
-    const double angle = 2. * M_PI * arc_length[k] / arc_length.back();
+    const double angle = 2. * CGAL_PI * arc_length[k] / arc_length.back();
     border_uv[border[k]] = Eigen::Vector2d(std::cos(angle), std::sin(angle));
     is_border[border[k]] = 1;
   }

@@ -9,6 +9,7 @@
 
 #include <CGAL/Named_function_parameters.h>
 #include <CGAL/boost/graph/named_params_helper.h>
+#include <CGAL/number_type_config.h>
 
 #include <algorithm>
 #include <cmath>

@@ -10,6 +10,8 @@
 #include <CGAL/Spherical_parameterization/internal/Vector3.h>
 #include <CGAL/Spherical_parameterization/parameters.h>
 
+#include <CGAL/number_type_config.h>
+
 #include <algorithm>
 #include <array>
 #include <cmath>
@@ -98,7 +100,7 @@ inline int out_of_bounds(double sine_length, double cosine_length)
 {
   const double angle = std::atan2(sine_length, cosine_length);
   if(!(angle >= minimum_corner_angle)) return -1;
-  return angle > 3.14159265358979323846 - minimum_corner_angle ? 1 : 0;
+  return angle > CGAL_PI - minimum_corner_angle ? 1 : 0;
 }
 
 // Cotangent of the angle between a and b.

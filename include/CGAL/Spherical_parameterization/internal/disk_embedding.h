@@ -17,6 +17,7 @@
 #include <CGAL/Surface_mesh_parameterization/Error_code.h>
 #include <CGAL/Surface_mesh_parameterization/Fixed_border_parameterizer_3.h>
 #include <CGAL/Surface_mesh_parameterization/Mean_value_coordinates_parameterizer_3.h>
+#include <CGAL/number_type_config.h>
 
 #include <cmath>
 #include <cstddef>
@@ -125,7 +126,7 @@ bool embed_one_disk(const Mesh_arrays& mesh, const Sphere_system& system, const 
 
   // The loop at evenly spaced points of the unit circle, counter-clockwise around disk A (as the paper does).
   std::vector<Point_2> border(global_index.size(), Point_2(0, 0));
-  const double two_pi = 2. * 3.14159265358979323846;
+  const double two_pi = 2. * CGAL_PI;
   const std::size_t m = partition.loop.size();
   for(std::size_t k = 0; k < m; ++k) {
     const double angle = two_pi * static_cast<double>(k) / static_cast<double>(m);

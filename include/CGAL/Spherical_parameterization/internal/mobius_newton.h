@@ -17,6 +17,8 @@
 #include <CGAL/Spherical_parameterization/internal/tangent_krylov_system.h>
 #include <CGAL/Spherical_parameterization/internal/tangent_newton_system.h>
 
+#include <CGAL/number_type_config.h>
+
 #include <cmath>
 #include <cstddef>
 #include <vector>
