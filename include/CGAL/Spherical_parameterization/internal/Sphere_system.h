@@ -10,6 +10,7 @@
 #include <CGAL/Spherical_parameterization/internal/Vector3.h>
 #include <CGAL/Spherical_parameterization/parameters.h>
 
+#include <CGAL/assertions.h>
 #include <CGAL/number_type_config.h>
 
 #include <algorithm>
@@ -42,9 +43,11 @@ struct Sphere_system {
   std::size_t degree(std::size_t i) const { return offsets[i + 1] - offsets[i]; }
 };
 
-// Builds the counter-clockwise rings. Requires a closed, oriented, vertex-manifold triangle mesh.
+// Builds the counter-clockwise rings. Requires a closed, oriented, vertex-manifold triangle mesh (one that passed
+// check_mesh_arrays(): the callers check the input first, so a violation here is a bug, not a user error).
 inline Sphere_system make_connectivity(const Mesh_arrays& mesh)
 {
+  CGAL_precondition(!mesh.triangles.empty());
   Sphere_system system;
   const std::size_t n = mesh.points.size();
   system.number_of_vertices = n;
@@ -71,11 +74,16 @@ inline Sphere_system make_connectivity(const Mesh_arrays& mesh)
     std::sort(first, last);
     auto entry = first;
     for(std::size_t k = system.offsets[v]; k < system.offsets[v + 1]; ++k) {
+      // Closed and vertex-manifold: the face after each face around v exists.
+      CGAL_assertion(entry != last);
       system.neighbors[k] = (*entry)[0];
       system.ring_faces[k] = (*entry)[2];
       const std::array<int, 3> key{(*entry)[1], -1, -1};
       entry = std::lower_bound(first, last, key);
+      CGAL_assertion(entry != last && (*entry)[0] == key[0]);
     }
+    // One fan: the walk came back to the face it started from.
+    CGAL_assertion(entry == first);
   }
 
   system.reverse.resize(system.neighbors.size());
@@ -84,6 +92,7 @@ inline Sphere_system make_connectivity(const Mesh_arrays& mesh)
       const std::size_t j = static_cast<std::size_t>(system.neighbors[k]);
       for(std::size_t m = system.offsets[j]; m < system.offsets[j + 1]; ++m)
         if(system.neighbors[m] == static_cast<int>(i)) { system.reverse[k] = m; break; }
+      CGAL_assertion(system.neighbors[system.reverse[k]] == static_cast<int>(i));  // closed: (j, i) exists
     }
   return system;
 }

@@ -12,6 +12,7 @@
 #include <CGAL/Spherical_parameterization/internal/Mesh_arrays.h>
 #include <CGAL/Spherical_parameterization/internal/Vector3.h>
 
+#include <CGAL/assertions.h>
 #include <CGAL/number_type_config.h>
 
 #include <algorithm>
@@ -87,6 +88,7 @@ inline Coarsening coarsen_mesh(const Mesh_arrays& mesh, std::size_t target_verti
   using namespace coarsening_detail;
   const std::size_t n = mesh.points.size();
   target_vertices = std::max<std::size_t>(target_vertices, 8);
+  CGAL_precondition(2 * n == mesh.triangles.size() + 4);  // closed genus 0: F = 2 V - 4
   Coarsening result;
   std::vector<std::array<int, 3>> faces = mesh.triangles;
   std::vector<char> face_alive(faces.size(), 1), vertex_alive(n, 1), locked(n, 0);
@@ -178,6 +180,8 @@ inline Coarsening coarsen_mesh(const Mesh_arrays& mesh, std::size_t target_verti
   }
   result.coarse.polygons.reserve(result.coarse.triangles.size());
   for(const std::array<int, 3>& t : result.coarse.triangles) result.coarse.polygons.push_back({t[0], t[1], t[2]});
+  // The collapses kept the link condition: still a closed genus-0 mesh.
+  CGAL_postcondition(2 * result.coarse.points.size() == result.coarse.triangles.size() + 4);
   return result;
 }
 
@@ -191,6 +195,7 @@ inline Coarsening coarsen_mesh(const Mesh_arrays& mesh, std::size_t target_verti
 inline std::size_t prolong(const Coarsening& coarsening, const std::vector<Vector3>& coarse_x, std::vector<Vector3>& x)
 {
   const std::size_t n = coarsening.coarse_index.size();
+  CGAL_precondition(coarse_x.size() == coarsening.coarse.points.size());
   x.assign(n, Vector3());
   for(std::size_t i = 0; i < n; ++i)
     if(coarsening.coarse_index[i] >= 0) x[i] = coarse_x[static_cast<std::size_t>(coarsening.coarse_index[i])];

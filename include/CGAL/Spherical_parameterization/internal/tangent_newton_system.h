@@ -15,6 +15,8 @@
 #include <CGAL/Spherical_parameterization/internal/deferred_stop_signals.h>
 #include <CGAL/Spherical_parameterization/internal/Vector3.h>
 
+#include <CGAL/assertions.h>
+
 #include <Eigen/OrderingMethods>
 #include <Eigen/SparseCholesky>
 #include <Eigen/SparseCore>
@@ -98,7 +100,9 @@ inline std::size_t compressed_slot(const Eigen::SparseMatrix<double>& matrix, Ei
 {
   const int* begin = matrix.innerIndexPtr() + matrix.outerIndexPtr()[column];
   const int* end = matrix.innerIndexPtr() + matrix.outerIndexPtr()[column + 1];
-  return static_cast<std::size_t>(std::lower_bound(begin, end, static_cast<int>(row)) - matrix.innerIndexPtr());
+  const int* slot = std::lower_bound(begin, end, static_cast<int>(row));
+  CGAL_assertion(slot != end && *slot == static_cast<int>(row));  // the pattern holds every block
+  return static_cast<std::size_t>(slot - matrix.innerIndexPtr());
 }
 
 // A 2n x 2n matrix with the 2x2 blocks (i, i) and (i, j), j a neighbour of i, all zero, and where each block's four

@@ -8,6 +8,8 @@
 
 #include <CGAL/Spherical_parameterization/internal/AMG/Compressed_row_matrix.h>
 
+#include <CGAL/assertions.h>
+
 #include <Eigen/Dense>
 #include <Eigen/Sparse>
 #include <Eigen/SparseLU>
@@ -538,6 +540,7 @@ private:
         for(int c = 0; c < K; ++c)
           defect[c] -= a * xj[c];
       }
+      CGAL_assertion(column[row_start[i]] == i); // build() put the diagonal entry first in each row
       const double diagonal = value[row_start[i]];
       for(int c = 0; c < K; ++c)
         x[K * i + c] += defect[c] / diagonal;
