@@ -4,7 +4,7 @@
 #define CGAL_SPHERICAL_PARAMETERIZATION_RESULT_H
 
 #include <CGAL/Spherical_parameterization/Error_code.h>
-#include <CGAL/Spherical_parameterization/parameters.h>
+#include <CGAL/Spherical_parameterization/enum.h>
 
 #include <cstddef>
 #include <string>

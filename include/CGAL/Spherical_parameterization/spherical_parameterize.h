@@ -218,6 +218,7 @@ Result spherical_parameterize(const TriangleMesh& tm, VertexSphereMap vsm,
     result.number_of_faces = mesh.polygons.size();
     return result;
   }
+  std::vector<std::vector<int>>().swap(mesh.polygons);  // checked: from here on the triangles say it all
   internal::renumber_for_locality(mesh);
 
   constexpr bool has_user_weights = !is_default_parameter<NamedParameters, internal_np::halfedge_weight_map_t>::value;
@@ -281,7 +282,8 @@ Result spherical_parameterize(const TriangleMesh& tm, VertexSphereMap vsm,
     };
   }
 
-  internal::Sphere_system system = internal::make_connectivity(mesh);
+  // The triangles move into the system: the only copy from here on (the mesh keeps its points).
+  internal::Sphere_system system = internal::make_connectivity(std::move(mesh.triangles), mesh.points.size());
   std::string weight_message;
   std::function<double(std::size_t, int)> user_weight;
   std::vector<std::pair<std::uint64_t, double>> user_table;
@@ -314,7 +316,7 @@ Result spherical_parameterize(const TriangleMesh& tm, VertexSphereMap vsm,
     result.message = std::string(get_error_message(weight_status)) + ": " + weight_message;
     result.clamped_weights = system.clamped_weights;
     result.number_of_vertices = mesh.points.size();
-    result.number_of_faces = mesh.polygons.size();
+    result.number_of_faces = system.triangles.size();
     return result;
   }
   const bool admissible = choose_parameter(get_parameter(np, internal_np::admissible_weights), false);

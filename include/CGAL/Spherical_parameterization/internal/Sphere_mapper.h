@@ -6,7 +6,9 @@
 #define CGAL_SPHERICAL_PARAMETERIZATION_INTERNAL_SPHERE_MAPPER_H
 
 #include <CGAL/Spherical_parameterization/Error_code.h>
+#include <CGAL/Spherical_parameterization/Progress.h>
 #include <CGAL/Spherical_parameterization/Result.h>
+#include <CGAL/Spherical_parameterization/enum.h>
 #include <CGAL/Spherical_parameterization/independent_copy.h>
 #include <CGAL/Spherical_parameterization/internal/Mesh_arrays.h>
 #include <CGAL/Spherical_parameterization/internal/Sphere_system.h>
@@ -18,7 +20,6 @@
 #include <CGAL/Spherical_parameterization/internal/sphere_iterations.h>
 #include <CGAL/Spherical_parameterization/internal/sphere_orientation.h>
 #include <CGAL/Spherical_parameterization/internal/two_disk_partition.h>
-#include <CGAL/Spherical_parameterization/parameters.h>
 
 #include <CGAL/Eigen_solver_traits.h>
 #include <CGAL/Eigen_sparse_matrix.h>
@@ -158,8 +159,9 @@ private:
     CGAL::Real_timer clock;
     clock.start();
     const std::size_t n = system_.number_of_vertices;
-    Coarsening coarsening = coarsen_mesh(mesh_, static_cast<std::size_t>(options_.iterations.tuning.multilevel_coarsening_ratio * static_cast<double>(n)));
-    Sphere_system coarse_system = make_connectivity(coarsening.coarse);
+    Coarsening coarsening = coarsen_mesh(mesh_.points, system_.triangles,
+                                         static_cast<std::size_t>(options_.iterations.tuning.multilevel_coarsening_ratio * static_cast<double>(n)));
+    Sphere_system coarse_system = make_connectivity(std::move(coarsening.coarse.triangles), coarsening.coarse.points.size());
     std::string message;
     if(assign_weights(coarse_system, coarsening.coarse, Weighting::UNIFORM, {}, message) != Error_code::OK) return false;
     const double coarsening_seconds = clock.time();

@@ -6,9 +6,9 @@
 #define CGAL_SPHERICAL_PARAMETERIZATION_INTERNAL_SPHERE_SYSTEM_H
 
 #include <CGAL/Spherical_parameterization/Error_code.h>
+#include <CGAL/Spherical_parameterization/enum.h>
 #include <CGAL/Spherical_parameterization/internal/Mesh_arrays.h>
 #include <CGAL/Spherical_parameterization/internal/Vector3.h>
-#include <CGAL/Spherical_parameterization/parameters.h>
 
 #include <CGAL/assertions.h>
 #include <CGAL/number_type_config.h>
@@ -43,25 +43,27 @@ struct Sphere_system {
   std::size_t degree(std::size_t i) const { return offsets[i + 1] - offsets[i]; }
 };
 
-// Builds the counter-clockwise rings. Requires a closed, oriented, vertex-manifold triangle mesh (one that passed
-// check_mesh_arrays(): the callers check the input first, so a violation here is a bug, not a user error).
-inline Sphere_system make_connectivity(const Mesh_arrays& mesh)
+// Builds the counter-clockwise rings of the triangles on `n` vertices, and keeps the triangles: the system is where
+// they are stored from here on (the pipeline moves them in). Requires a closed, oriented, vertex-manifold triangle
+// mesh (one that passed check_mesh_arrays(): the callers check the input first, so a violation here is a bug, not a
+// user error).
+inline Sphere_system make_connectivity(std::vector<std::array<int, 3>> triangles, std::size_t n)
 {
-  CGAL_precondition(!mesh.triangles.empty());
+  CGAL_precondition(!triangles.empty());
   Sphere_system system;
-  const std::size_t n = mesh.points.size();
   system.number_of_vertices = n;
-  system.triangles = mesh.triangles;
+  system.triangles = std::move(triangles);
+  const std::vector<std::array<int, 3>>& faces = system.triangles;
   system.offsets.assign(n + 1, 0);
-  for(const auto& t : mesh.triangles) for(int i : t) ++system.offsets[static_cast<std::size_t>(i) + 1];
+  for(const auto& t : faces) for(int i : t) ++system.offsets[static_cast<std::size_t>(i) + 1];
   for(std::size_t i = 0; i < n; ++i) system.offsets[i + 1] += system.offsets[i];
 
   // For vertex v in face f = (v, b, c), c follows b counter-clockwise around v.
   std::vector<std::array<int, 3>> successor(system.offsets[n]);
   {
     std::vector<std::size_t> fill(system.offsets.begin(), system.offsets.end() - 1);
-    for(std::size_t f = 0; f < mesh.triangles.size(); ++f) {
-      const auto& t = mesh.triangles[f];
+    for(std::size_t f = 0; f < faces.size(); ++f) {
+      const auto& t = faces[f];
       for(int k = 0; k < 3; ++k)
         successor[fill[static_cast<std::size_t>(t[k])]++] = {t[(k + 1) % 3], t[(k + 2) % 3], static_cast<int>(f)};
     }
@@ -95,6 +97,12 @@ inline Sphere_system make_connectivity(const Mesh_arrays& mesh)
       CGAL_assertion(system.neighbors[system.reverse[k]] == static_cast<int>(i));  // closed: (j, i) exists
     }
   return system;
+}
+
+// The same with a copy of the mesh's triangles (the mesh keeps its own).
+inline Sphere_system make_connectivity(const Mesh_arrays& mesh)
+{
+  return make_connectivity(mesh.triangles, mesh.points.size());
 }
 
 // Degenerate corners (zero-area faces, coincident vertices, needles) make cotangent and mean-value weights

@@ -5,10 +5,10 @@
 #ifndef CGAL_SPHERICAL_PARAMETERIZATION_INTERNAL_DISK_EMBEDDING_H
 #define CGAL_SPHERICAL_PARAMETERIZATION_INTERNAL_DISK_EMBEDDING_H
 
+#include <CGAL/Spherical_parameterization/enum.h>
 #include <CGAL/Spherical_parameterization/internal/Mesh_arrays.h>
 #include <CGAL/Spherical_parameterization/internal/Sphere_system.h>
 #include <CGAL/Spherical_parameterization/internal/two_disk_partition.h>
-#include <CGAL/Spherical_parameterization/parameters.h>
 
 #include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
 #include <CGAL/Surface_mesh.h>

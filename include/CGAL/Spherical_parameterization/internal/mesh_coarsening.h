@@ -32,6 +32,7 @@ constexpr std::size_t coarsening_max_degree = 12;
 
 struct Coarsening {
   Mesh_arrays coarse;                     // the kept vertices (compact indices, in the fine order) and triangles
+                                          // (no polygons: nothing checks the coarse mesh as input)
   std::vector<int> coarse_index;          // fine vertex -> its coarse index, -1 if removed
   std::vector<int> removed;               // fine indices, in the order of their removal
   std::vector<int> targets;               // the neighbour each removed vertex was collapsed into (fine index)
@@ -81,16 +82,18 @@ inline void erase_value(std::vector<int>& values, int value)
 
 } // namespace coarsening_detail
 
-// Collapses `mesh` (closed, oriented, manifold, genus 0) down to about `target_vertices` (never below 8).
-// Vertices are visited in index order, which follows the space-filling curve on large meshes.
-inline Coarsening coarsen_mesh(const Mesh_arrays& mesh, std::size_t target_vertices)
+// Collapses the mesh of `points` and `triangles` (closed, oriented, manifold, genus 0) down to about
+// `target_vertices` (never below 8). Vertices are visited in index order, which follows the space-filling curve on
+// large meshes.
+inline Coarsening coarsen_mesh(const std::vector<Vector3>& points, const std::vector<std::array<int, 3>>& triangles,
+                               std::size_t target_vertices)
 {
   using namespace coarsening_detail;
-  const std::size_t n = mesh.points.size();
+  const std::size_t n = points.size();
   target_vertices = std::max<std::size_t>(target_vertices, 8);
-  CGAL_precondition(2 * n == mesh.triangles.size() + 4);  // closed genus 0: F = 2 V - 4
+  CGAL_precondition(2 * n == triangles.size() + 4);  // closed genus 0: F = 2 V - 4
   Coarsening result;
-  std::vector<std::array<int, 3>> faces = mesh.triangles;
+  std::vector<std::array<int, 3>> faces = triangles;
   std::vector<char> face_alive(faces.size(), 1), vertex_alive(n, 1), locked(n, 0);
   std::vector<std::vector<int>> incident(n);
   for(std::size_t f = 0; f < faces.size(); ++f)
@@ -131,7 +134,7 @@ inline Coarsening coarsen_mesh(const Mesh_arrays& mesh, std::size_t target_verti
           if(!link) break;
         }
         if(!link) continue;
-        const double edge = squared_length(mesh.points[v] - mesh.points[iu]);
+        const double edge = squared_length(points[v] - points[iu]);
         if(degree < best_degree || edge < best_length) {
           best = k;
           best_degree = degree;
@@ -169,7 +172,7 @@ inline Coarsening coarsen_mesh(const Mesh_arrays& mesh, std::size_t target_verti
   for(std::size_t i = 0; i < n; ++i)
     if(vertex_alive[i]) {
       result.coarse_index[i] = next++;
-      result.coarse.points.push_back(mesh.points[i]);
+      result.coarse.points.push_back(points[i]);
     }
   for(std::size_t f = 0; f < faces.size(); ++f) {
     if(!face_alive[f]) continue;
@@ -178,11 +181,15 @@ inline Coarsening coarsen_mesh(const Mesh_arrays& mesh, std::size_t target_verti
                                                          result.coarse_index[static_cast<std::size_t>(t[1])],
                                                          result.coarse_index[static_cast<std::size_t>(t[2])]));
   }
-  result.coarse.polygons.reserve(result.coarse.triangles.size());
-  for(const std::array<int, 3>& t : result.coarse.triangles) result.coarse.polygons.push_back({t[0], t[1], t[2]});
   // The collapses kept the link condition: still a closed genus-0 mesh.
   CGAL_postcondition(2 * result.coarse.points.size() == result.coarse.triangles.size() + 4);
   return result;
+}
+
+// The same for a mesh's arrays.
+inline Coarsening coarsen_mesh(const Mesh_arrays& mesh, std::size_t target_vertices)
+{
+  return coarsen_mesh(mesh.points, mesh.triangles, target_vertices);
 }
 
 // The fine map from the coarse one: kept vertices where the coarse map put them, removed ones inserted back in
