@@ -12,8 +12,8 @@
 // CPU time (building the Surface_mesh, the caller's part, is not counted). CODE OK means the file must be mapped with uniform weights and certified bijective.
 
 #include <CGAL/Spherical_parameterization/IO/read_polygon_soup.h>
+#include <CGAL/Spherical_parameterization/certify_sphere_map.h>
 #include <CGAL/Spherical_parameterization/check_input.h>
-#include <CGAL/Spherical_parameterization/is_bijective_on_sphere.h>
 #include <CGAL/Spherical_parameterization/spherical_parameterize.h>
 
 #include <CGAL/Exact_predicates_inexact_constructions_kernel.h>

@@ -3,10 +3,10 @@
 #include <CGAL/Spherical_parameterization/IO/brain_surfaces.h>
 #include <CGAL/Spherical_parameterization/IO/read_polygon_soup.h>
 #include <CGAL/Spherical_parameterization/check_input.h>
-#include <CGAL/Spherical_parameterization/is_bijective_on_sphere.h>
+#include <CGAL/Spherical_parameterization/internal/stage3/constrained_balance.h>
+#include <CGAL/Spherical_parameterization/internal/stage3/imbalance_least_squares.h>
+#include <CGAL/Spherical_parameterization/is_bijective_on_sphere.h>  // certificate and distortion, through the header kept for earlier code
 #include <CGAL/Spherical_parameterization/spherical_parameterize.h>
-#include <CGAL/Spherical_parameterization/internal/constrained_balance.h>
-#include <CGAL/Spherical_parameterization/internal/imbalance_least_squares.h>
 
 #include <CGAL/Exact_predicates_exact_constructions_kernel.h>
 #include <CGAL/Exact_predicates_inexact_constructions_kernel.h>

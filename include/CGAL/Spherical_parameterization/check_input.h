@@ -215,6 +215,20 @@ Mesh_arrays read_mesh_arrays(const TriangleMesh& tm, VertexIndexMap vim, const N
   });
 }
 
+// The map `vsm` of a user (the coordinates as double), stored at the indices of the `vertex_index_map` named
+// parameter, as read_mesh_arrays() stores the points.
+template <typename TriangleMesh, typename VertexSphereMap, typename NamedParameters>
+std::vector<Vector3> read_sphere_map(const TriangleMesh& tm, VertexSphereMap vsm, const NamedParameters& np)
+{
+  auto vim = CGAL::get_initialized_vertex_index_map(tm, np);
+  std::vector<Vector3> x(static_cast<std::size_t>(num_vertices(tm)));
+  for(auto v : vertices(tm)) {
+    const auto& p = get(vsm, v);
+    x[static_cast<std::size_t>(get(vim, v))] = Vector3(CGAL::to_double(p.x()), CGAL::to_double(p.y()), CGAL::to_double(p.z()));
+  }
+  return x;
+}
+
 } // namespace internal
 
 /// \ingroup PkgSphericalParameterizationRef

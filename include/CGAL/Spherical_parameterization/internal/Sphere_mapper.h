@@ -12,13 +12,13 @@
 #include <CGAL/Spherical_parameterization/independent_copy.h>
 #include <CGAL/Spherical_parameterization/internal/Mesh_arrays.h>
 #include <CGAL/Spherical_parameterization/internal/Sphere_system.h>
+#include <CGAL/Spherical_parameterization/internal/certificate.h>
 #include <CGAL/Spherical_parameterization/internal/disk_embedding.h>
-#include <CGAL/Spherical_parameterization/internal/global_newton.h>
 #include <CGAL/Spherical_parameterization/internal/inscribability.h>
 #include <CGAL/Spherical_parameterization/internal/iteration_driver.h>
 #include <CGAL/Spherical_parameterization/internal/mesh_coarsening.h>
 #include <CGAL/Spherical_parameterization/internal/sphere_iterations.h>
-#include <CGAL/Spherical_parameterization/internal/sphere_orientation.h>
+#include <CGAL/Spherical_parameterization/internal/stage3/global_newton.h>
 #include <CGAL/Spherical_parameterization/internal/two_disk_partition.h>
 
 #include <CGAL/Eigen_solver_traits.h>

@@ -5,7 +5,7 @@
 #define CGAL_SPHERICAL_PARAMETERIZATION_INTERNAL_SPHERE_STATE_H
 
 #include <CGAL/Spherical_parameterization/internal/Sphere_system.h>
-#include <CGAL/Spherical_parameterization/internal/sphere_orientation.h>
+#include <CGAL/Spherical_parameterization/internal/certificate.h>
 
 #include <CGAL/assertions.h>
 

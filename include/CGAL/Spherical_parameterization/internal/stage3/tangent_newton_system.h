@@ -8,12 +8,12 @@
 // does not move around it). The matrix is factorized with a sparse LDL^T whose fill-reducing order is computed
 // once, on the vertex graph, and whose pattern (upper triangle only) is written in place at every step.
 
-#ifndef CGAL_SPHERICAL_PARAMETERIZATION_INTERNAL_TANGENT_NEWTON_SYSTEM_H
-#define CGAL_SPHERICAL_PARAMETERIZATION_INTERNAL_TANGENT_NEWTON_SYSTEM_H
+#ifndef CGAL_SPHERICAL_PARAMETERIZATION_INTERNAL_STAGE3_TANGENT_NEWTON_SYSTEM_H
+#define CGAL_SPHERICAL_PARAMETERIZATION_INTERNAL_STAGE3_TANGENT_NEWTON_SYSTEM_H
 
 #include <CGAL/Spherical_parameterization/internal/Sphere_system.h>
-#include <CGAL/Spherical_parameterization/internal/deferred_stop_signals.h>
 #include <CGAL/Spherical_parameterization/internal/Vector3.h>
+#include <CGAL/Spherical_parameterization/internal/deferred_stop_signals.h>
 
 #include <CGAL/assertions.h>
 
@@ -354,4 +354,4 @@ private:
 } // namespace Spherical_parameterization
 } // namespace CGAL
 
-#endif // CGAL_SPHERICAL_PARAMETERIZATION_INTERNAL_TANGENT_NEWTON_SYSTEM_H
+#endif // CGAL_SPHERICAL_PARAMETERIZATION_INTERNAL_STAGE3_TANGENT_NEWTON_SYSTEM_H

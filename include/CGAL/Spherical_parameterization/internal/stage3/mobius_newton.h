@@ -9,13 +9,13 @@
 // sweeps move the iterate instead. When the steps keep being cut short, it gives up and restores its best
 // iterate, so that another strategy can continue (global_newton.h).
 
-#ifndef CGAL_SPHERICAL_PARAMETERIZATION_INTERNAL_MOBIUS_NEWTON_H
-#define CGAL_SPHERICAL_PARAMETERIZATION_INTERNAL_MOBIUS_NEWTON_H
+#ifndef CGAL_SPHERICAL_PARAMETERIZATION_INTERNAL_STAGE3_MOBIUS_NEWTON_H
+#define CGAL_SPHERICAL_PARAMETERIZATION_INTERNAL_STAGE3_MOBIUS_NEWTON_H
 
-#include <CGAL/Spherical_parameterization/internal/mobius.h>
 #include <CGAL/Spherical_parameterization/internal/sphere_iterations.h>
-#include <CGAL/Spherical_parameterization/internal/tangent_krylov_system.h>
-#include <CGAL/Spherical_parameterization/internal/tangent_newton_system.h>
+#include <CGAL/Spherical_parameterization/internal/stage3/mobius.h>
+#include <CGAL/Spherical_parameterization/internal/stage3/tangent_krylov_system.h>
+#include <CGAL/Spherical_parameterization/internal/stage3/tangent_newton_system.h>
 
 #include <CGAL/number_type_config.h>
 
@@ -193,4 +193,4 @@ inline Iteration_report mobius_newton(Sphere_state& state, const Iteration_optio
 } // namespace Spherical_parameterization
 } // namespace CGAL
 
-#endif // CGAL_SPHERICAL_PARAMETERIZATION_INTERNAL_MOBIUS_NEWTON_H
+#endif // CGAL_SPHERICAL_PARAMETERIZATION_INTERNAL_STAGE3_MOBIUS_NEWTON_H

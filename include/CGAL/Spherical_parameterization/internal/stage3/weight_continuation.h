@@ -7,10 +7,10 @@
 // ends before s = 1 (cotangent weights: a triangle degenerates and the Jacobian becomes singular), it fails, and
 // that is worth knowing: the target weights have no bijective balanced solution on this path.
 
-#ifndef CGAL_SPHERICAL_PARAMETERIZATION_INTERNAL_WEIGHT_CONTINUATION_H
-#define CGAL_SPHERICAL_PARAMETERIZATION_INTERNAL_WEIGHT_CONTINUATION_H
+#ifndef CGAL_SPHERICAL_PARAMETERIZATION_INTERNAL_STAGE3_WEIGHT_CONTINUATION_H
+#define CGAL_SPHERICAL_PARAMETERIZATION_INTERNAL_STAGE3_WEIGHT_CONTINUATION_H
 
-#include <CGAL/Spherical_parameterization/internal/mobius_newton.h>
+#include <CGAL/Spherical_parameterization/internal/stage3/mobius_newton.h>
 
 #include <algorithm>
 #include <cstddef>
@@ -94,4 +94,4 @@ inline Continuation_report weight_continuation(const Sphere_system& target, std:
 } // namespace Spherical_parameterization
 } // namespace CGAL
 
-#endif // CGAL_SPHERICAL_PARAMETERIZATION_INTERNAL_WEIGHT_CONTINUATION_H
+#endif // CGAL_SPHERICAL_PARAMETERIZATION_INTERNAL_STAGE3_WEIGHT_CONTINUATION_H

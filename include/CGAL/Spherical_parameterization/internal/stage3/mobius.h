@@ -14,12 +14,12 @@
 //   x -> ((u + T) a + sqrt(1 - T^2) (x - u a)) / (1 + u T),   u = a.x, T = tanh(s),
 // which maps the sphere onto itself, keeps its orientation and maps circles to circles.
 
-#ifndef CGAL_SPHERICAL_PARAMETERIZATION_INTERNAL_MOBIUS_H
-#define CGAL_SPHERICAL_PARAMETERIZATION_INTERNAL_MOBIUS_H
+#ifndef CGAL_SPHERICAL_PARAMETERIZATION_INTERNAL_STAGE3_MOBIUS_H
+#define CGAL_SPHERICAL_PARAMETERIZATION_INTERNAL_STAGE3_MOBIUS_H
 
+#include <CGAL/Spherical_parameterization/internal/Sphere_state.h>
 #include <CGAL/Spherical_parameterization/internal/Sphere_system.h>
 #include <CGAL/Spherical_parameterization/internal/Vector3.h>
-#include <CGAL/Spherical_parameterization/internal/Sphere_state.h>
 #include <CGAL/Spherical_parameterization/internal/iteration_driver.h>
 
 #include <Eigen/Dense>
@@ -256,4 +256,4 @@ inline std::size_t balance_boosts(Sphere_state& state, double target, const Solv
 } // namespace Spherical_parameterization
 } // namespace CGAL
 
-#endif // CGAL_SPHERICAL_PARAMETERIZATION_INTERNAL_MOBIUS_H
+#endif // CGAL_SPHERICAL_PARAMETERIZATION_INTERNAL_STAGE3_MOBIUS_H

@@ -14,16 +14,16 @@
 // every positively oriented triangle positive (exact predicate) and lowers the paper's residual, and the
 // paper's local Newton sweeps whenever no such step exists.
 
-#ifndef CGAL_SPHERICAL_PARAMETERIZATION_INTERNAL_GLOBAL_NEWTON_H
-#define CGAL_SPHERICAL_PARAMETERIZATION_INTERNAL_GLOBAL_NEWTON_H
+#ifndef CGAL_SPHERICAL_PARAMETERIZATION_INTERNAL_STAGE3_GLOBAL_NEWTON_H
+#define CGAL_SPHERICAL_PARAMETERIZATION_INTERNAL_STAGE3_GLOBAL_NEWTON_H
 
 #include <CGAL/Spherical_parameterization/internal/deferred_stop_signals.h>
 #include <CGAL/Spherical_parameterization/internal/sphere_iterations.h>
-#include <CGAL/Spherical_parameterization/internal/mobius_newton.h>
-#include <CGAL/Spherical_parameterization/internal/tangent_newton_system.h>
-#include <CGAL/Spherical_parameterization/internal/weight_continuation.h>
-#include <CGAL/Spherical_parameterization/internal/constrained_balance.h>
-#include <CGAL/Spherical_parameterization/internal/imbalance_least_squares.h>
+#include <CGAL/Spherical_parameterization/internal/stage3/constrained_balance.h>
+#include <CGAL/Spherical_parameterization/internal/stage3/imbalance_least_squares.h>
+#include <CGAL/Spherical_parameterization/internal/stage3/mobius_newton.h>
+#include <CGAL/Spherical_parameterization/internal/stage3/tangent_newton_system.h>
+#include <CGAL/Spherical_parameterization/internal/stage3/weight_continuation.h>
 
 #include <Eigen/Sparse>
 #include <Eigen/SparseLU>
@@ -355,4 +355,4 @@ inline Iteration_report global_newton(Sphere_state& state, const Iteration_optio
 } // namespace Spherical_parameterization
 } // namespace CGAL
 
-#endif // CGAL_SPHERICAL_PARAMETERIZATION_INTERNAL_GLOBAL_NEWTON_H
+#endif // CGAL_SPHERICAL_PARAMETERIZATION_INTERNAL_STAGE3_GLOBAL_NEWTON_H

@@ -22,14 +22,14 @@
 // are cut ever shorter by the triangles about to degenerate (a primal barrier's Newton model holds only close to
 // the central path): `reached` stays false, and global_newton.h goes on from the better of this map and its own.
 
-#ifndef CGAL_SPHERICAL_PARAMETERIZATION_INTERNAL_CONSTRAINED_BALANCE_H
-#define CGAL_SPHERICAL_PARAMETERIZATION_INTERNAL_CONSTRAINED_BALANCE_H
+#ifndef CGAL_SPHERICAL_PARAMETERIZATION_INTERNAL_STAGE3_CONSTRAINED_BALANCE_H
+#define CGAL_SPHERICAL_PARAMETERIZATION_INTERNAL_STAGE3_CONSTRAINED_BALANCE_H
 
 #include <CGAL/Spherical_parameterization/internal/Sphere_state.h>
 #include <CGAL/Spherical_parameterization/internal/Sphere_system.h>
 #include <CGAL/Spherical_parameterization/internal/Vector3.h>
 #include <CGAL/Spherical_parameterization/internal/iteration_driver.h>
-#include <CGAL/Spherical_parameterization/internal/mobius.h>
+#include <CGAL/Spherical_parameterization/internal/stage3/mobius.h>
 
 #include <Eigen/Sparse>
 #include <Eigen/SparseLU>
@@ -335,4 +335,4 @@ inline Constrained_balance_report constrained_balance(Sphere_state& state, const
 } // namespace Spherical_parameterization
 } // namespace CGAL
 
-#endif // CGAL_SPHERICAL_PARAMETERIZATION_INTERNAL_CONSTRAINED_BALANCE_H
+#endif // CGAL_SPHERICAL_PARAMETERIZATION_INTERNAL_STAGE3_CONSTRAINED_BALANCE_H

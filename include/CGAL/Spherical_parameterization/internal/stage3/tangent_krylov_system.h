@@ -15,14 +15,14 @@
 //   the tangent planes: -J differs from that projected Laplacian only by terms of the order of the squared edge
 //   lengths and by the frame rotations between neighbours.
 
-#ifndef CGAL_SPHERICAL_PARAMETERIZATION_INTERNAL_TANGENT_KRYLOV_SYSTEM_H
-#define CGAL_SPHERICAL_PARAMETERIZATION_INTERNAL_TANGENT_KRYLOV_SYSTEM_H
+#ifndef CGAL_SPHERICAL_PARAMETERIZATION_INTERNAL_STAGE3_TANGENT_KRYLOV_SYSTEM_H
+#define CGAL_SPHERICAL_PARAMETERIZATION_INTERNAL_STAGE3_TANGENT_KRYLOV_SYSTEM_H
 
 #include <CGAL/Spherical_parameterization/internal/AMG/Krylov_solvers.h>
 #include <CGAL/Spherical_parameterization/internal/AMG/Ruge_stueben_hierarchy.h>
 #include <CGAL/Spherical_parameterization/internal/Sphere_system.h>
 #include <CGAL/Spherical_parameterization/internal/Vector3.h>
-#include <CGAL/Spherical_parameterization/internal/tangent_newton_system.h>
+#include <CGAL/Spherical_parameterization/internal/stage3/tangent_newton_system.h>
 
 #include <algorithm>
 #include <cmath>
@@ -211,4 +211,4 @@ private:
 } // namespace Spherical_parameterization
 } // namespace CGAL
 
-#endif // CGAL_SPHERICAL_PARAMETERIZATION_INTERNAL_TANGENT_KRYLOV_SYSTEM_H
+#endif // CGAL_SPHERICAL_PARAMETERIZATION_INTERNAL_STAGE3_TANGENT_KRYLOV_SYSTEM_H

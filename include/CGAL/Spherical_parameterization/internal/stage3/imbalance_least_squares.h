@@ -19,16 +19,16 @@
 // Stationarity, in the scale of the imbalance: sigma_k = |grad_k Phi_mu| / S_k with S_k = |alpha_k| / l_k +
 // sum_{j: k in N(j)} |w_jk| / l_j, the size of grad_k Psi if every r_i of its terms had length 1.
 
-#ifndef CGAL_SPHERICAL_PARAMETERIZATION_INTERNAL_IMBALANCE_LEAST_SQUARES_H
-#define CGAL_SPHERICAL_PARAMETERIZATION_INTERNAL_IMBALANCE_LEAST_SQUARES_H
+#ifndef CGAL_SPHERICAL_PARAMETERIZATION_INTERNAL_STAGE3_IMBALANCE_LEAST_SQUARES_H
+#define CGAL_SPHERICAL_PARAMETERIZATION_INTERNAL_STAGE3_IMBALANCE_LEAST_SQUARES_H
 
 #include <CGAL/Spherical_parameterization/internal/Sphere_state.h>
 #include <CGAL/Spherical_parameterization/internal/Sphere_system.h>
 #include <CGAL/Spherical_parameterization/internal/Vector3.h>
-#include <CGAL/Spherical_parameterization/internal/constrained_balance.h>
-#include <CGAL/Spherical_parameterization/internal/tangent_newton_system.h>
 #include <CGAL/Spherical_parameterization/internal/deferred_stop_signals.h>
 #include <CGAL/Spherical_parameterization/internal/iteration_driver.h>
+#include <CGAL/Spherical_parameterization/internal/stage3/constrained_balance.h>
+#include <CGAL/Spherical_parameterization/internal/stage3/tangent_newton_system.h>
 
 #include <Eigen/Sparse>
 #include <Eigen/SparseCholesky>
@@ -408,4 +408,4 @@ inline Least_squares_report imbalance_least_squares(Sphere_state& state, const I
 } // namespace Spherical_parameterization
 } // namespace CGAL
 
-#endif // CGAL_SPHERICAL_PARAMETERIZATION_INTERNAL_IMBALANCE_LEAST_SQUARES_H
+#endif // CGAL_SPHERICAL_PARAMETERIZATION_INTERNAL_STAGE3_IMBALANCE_LEAST_SQUARES_H

@@ -1,7 +1,7 @@
 // Orientation of spherical triangles under CGAL's exact predicate, and their signed areas.
 
-#ifndef CGAL_SPHERICAL_PARAMETERIZATION_INTERNAL_SPHERE_ORIENTATION_H
-#define CGAL_SPHERICAL_PARAMETERIZATION_INTERNAL_SPHERE_ORIENTATION_H
+#ifndef CGAL_SPHERICAL_PARAMETERIZATION_INTERNAL_CERTIFICATE_H
+#define CGAL_SPHERICAL_PARAMETERIZATION_INTERNAL_CERTIFICATE_H
 
 #include <CGAL/Spherical_parameterization/internal/Vector3.h>
 
@@ -144,4 +144,4 @@ inline Sphere_certificate certify(const std::vector<std::array<int, 3>>& triangl
 } // namespace Spherical_parameterization
 } // namespace CGAL
 
-#endif // CGAL_SPHERICAL_PARAMETERIZATION_INTERNAL_SPHERE_ORIENTATION_H
+#endif // CGAL_SPHERICAL_PARAMETERIZATION_INTERNAL_CERTIFICATE_H
