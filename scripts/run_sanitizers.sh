@@ -1,4 +1,11 @@
 #!/usr/bin/env bash
+# Copyright (c) 2026 CGAL Spherical Parameterization contributors.
+# This file is part of CGAL Spherical Parameterization, a package in CGAL's style (www.cgal.org).
+#
+# SPDX-License-Identifier: GPL-3.0-or-later
+#
+# Author(s)     : CGAL Spherical Parameterization contributors
+
 # The unit tests under AddressSanitizer + UndefinedBehaviorSanitizer on the small meshes, then the libFuzzer
 # target for a bounded time. Both built with clang into ${SANITIZE_BUILD_DIR:-build-sanitize}; clang and its
 # runtime are installed when missing (Debian 12: clang-14, libclang-rt-14-dev). Run scripts/setup.sh first (as

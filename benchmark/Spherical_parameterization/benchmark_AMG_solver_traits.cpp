@@ -1,3 +1,10 @@
+// Copyright (c) 2026 CGAL Spherical Parameterization contributors.
+// This file is part of CGAL Spherical Parameterization, a package in CGAL's style (www.cgal.org).
+//
+// SPDX-License-Identifier: GPL-3.0-or-later
+//
+// Author(s)     : CGAL Spherical Parameterization contributors
+
 // Benchmark of CGAL::Spherical_parameterization::AMG_solver_traits against Eigen's solvers:
 // setup and solve times for two right-hand sides (u and v, as in a disk parameterization) to a relative
 // residual of 1e-10, iterations, residual, and the peak memory added by each method.

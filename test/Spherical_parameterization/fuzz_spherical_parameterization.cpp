@@ -1,3 +1,10 @@
+// Copyright (c) 2026 CGAL Spherical Parameterization contributors.
+// This file is part of CGAL Spherical Parameterization, a package in CGAL's style (www.cgal.org).
+//
+// SPDX-License-Identifier: GPL-3.0-or-later
+//
+// Author(s)     : CGAL Spherical Parameterization contributors
+
 // libFuzzer target: OFF text -> parse_OFF -> check_polygon_soup -> spherical_parameterize -> certificate.
 // Built by scripts/run_sanitizers.sh with clang, -fsanitize=fuzzer,address,undefined. Besides crashes, leaks and
 // undefined behaviour, it stops on a broken promise of the package:

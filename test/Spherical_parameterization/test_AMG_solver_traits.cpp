@@ -1,3 +1,10 @@
+// Copyright (c) 2026 CGAL Spherical Parameterization contributors.
+// This file is part of CGAL Spherical Parameterization, a package in CGAL's style (www.cgal.org).
+//
+// SPDX-License-Identifier: GPL-3.0-or-later
+//
+// Author(s)     : CGAL Spherical Parameterization contributors
+
 // Tests of CGAL::Spherical_parameterization::AMG_solver_traits: accuracy against Eigen's SparseLU on disk
 // systems of real meshes (uniform, cotangent, mean-value weights; with and without CGAL's identity border rows),
 // iteration counts on Poisson grids, use through CGAL's Fixed_border_parameterizer_3, and failure on bad input.

@@ -1,3 +1,10 @@
+// Copyright (c) 2026 CGAL Spherical Parameterization contributors.
+// This file is part of CGAL Spherical Parameterization, a package in CGAL's style (www.cgal.org).
+//
+// SPDX-License-Identifier: GPL-3.0-or-later
+//
+// Author(s)     : CGAL Spherical Parameterization contributors
+
 // The certificate of a spherical map, for any map a user has (not only ours): certify_sphere_map() and
 // is_bijective_on_sphere(). The distortion is measured in measure_spherical_distortion.h.
 

@@ -1,3 +1,10 @@
+// Copyright (c) 2026 CGAL Spherical Parameterization contributors.
+// This file is part of CGAL Spherical Parameterization, a package in CGAL's style (www.cgal.org).
+//
+// SPDX-License-Identifier: GPL-3.0-or-later
+//
+// Author(s)     : CGAL Spherical Parameterization contributors
+
 // The choices of the package's named parameters (`weighting`, `nonlinear_solver`, `convergence_test`): plain enums,
 // without the named-parameter machinery of parameters.h, so that the internal stages can use them too.
 

@@ -1,3 +1,10 @@
+// Copyright (c) 2026 CGAL Spherical Parameterization contributors.
+// This file is part of CGAL Spherical Parameterization, a package in CGAL's style (www.cgal.org).
+//
+// SPDX-License-Identifier: GPL-3.0-or-later
+//
+// Author(s)     : CGAL Spherical Parameterization contributors
+
 // The distortion of a spherical map, for any map a user has (not only ours), as CGAL's Surface_mesh_parameterization
 // keeps measure_distortion() apart from the parameterizers.
 

@@ -1,3 +1,10 @@
+// Copyright (c) 2026 CGAL Spherical Parameterization contributors.
+// This file is part of CGAL Spherical Parameterization, a package in CGAL's style (www.cgal.org).
+//
+// SPDX-License-Identifier: GPL-3.0-or-later
+//
+// Author(s)     : CGAL Spherical Parameterization contributors
+
 // The input mesh read once into flat arrays: every later stage works on these, never on the FaceGraph.
 // Faces keep the order of faces(tm) and each face starts at its smallest vertex index (orientation kept),
 // so that Surface_mesh, Polyhedron_3 or any FaceGraph with the same vertex and face order give the same arrays

@@ -1,3 +1,10 @@
+// Copyright (c) 2026 CGAL Spherical Parameterization contributors.
+// This file is part of CGAL Spherical Parameterization, a package in CGAL's style (www.cgal.org).
+//
+// SPDX-License-Identifier: GPL-3.0-or-later
+//
+// Author(s)     : CGAL Spherical Parameterization contributors
+
 // The pipeline behind spherical_parameterize(), as one class whose methods are its stages: the start (the
 // multilevel start, or the paper's stage 1 from two disks), stages 2 and 3, then the certificate and the figures of
 // the Result. spherical_parameterize.h is the front end (named parameters in, property map out).

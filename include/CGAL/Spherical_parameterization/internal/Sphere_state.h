@@ -1,3 +1,10 @@
+// Copyright (c) 2026 CGAL Spherical Parameterization contributors.
+// This file is part of CGAL Spherical Parameterization, a package in CGAL's style (www.cgal.org).
+//
+// SPDX-License-Identifier: GPL-3.0-or-later
+//
+// Author(s)     : CGAL Spherical Parameterization contributors
+
 // The iterate of stages 2 and 3, written by one owner: the positions on the sphere, the neighbour sums
 // s_i = sum_j w_ij x_j cached for the paper's sweeps, and which faces are positively oriented (exact predicate).
 

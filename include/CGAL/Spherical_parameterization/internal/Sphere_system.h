@@ -1,3 +1,10 @@
+// Copyright (c) 2026 CGAL Spherical Parameterization contributors.
+// This file is part of CGAL Spherical Parameterization, a package in CGAL's style (www.cgal.org).
+//
+// SPDX-License-Identifier: GPL-3.0-or-later
+//
+// Author(s)     : CGAL Spherical Parameterization contributors
+
 // The balance equations alpha_i x_i = sum_j w_ij x_j in compact form: for every vertex its neighbours in
 // counter-clockwise order (CSR), the weights normalized to sum to one per vertex, and for every entry (i, j)
 // the position of the entry (j, i), so that moving x_i updates the sums of its neighbours in O(degree).

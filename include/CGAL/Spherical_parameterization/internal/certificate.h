@@ -1,3 +1,10 @@
+// Copyright (c) 2026 CGAL Spherical Parameterization contributors.
+// This file is part of CGAL Spherical Parameterization, a package in CGAL's style (www.cgal.org).
+//
+// SPDX-License-Identifier: GPL-3.0-or-later
+//
+// Author(s)     : CGAL Spherical Parameterization contributors
+
 // Orientation of spherical triangles under CGAL's exact predicate, and their signed areas.
 
 #ifndef CGAL_SPHERICAL_PARAMETERIZATION_INTERNAL_CERTIFICATE_H

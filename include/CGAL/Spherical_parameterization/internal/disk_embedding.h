@@ -1,3 +1,10 @@
+// Copyright (c) 2026 CGAL Spherical Parameterization contributors.
+// This file is part of CGAL Spherical Parameterization, a package in CGAL's style (www.cgal.org).
+//
+// SPDX-License-Identifier: GPL-3.0-or-later
+//
+// Author(s)     : CGAL Spherical Parameterization contributors
+
 // Stage 1b: embed each of the two disks in the unit disk with CGAL's Surface_mesh_parameterization
 // (Fixed_border_parameterizer_3 and its Tutte / mean-value / discrete-conformal strategies), the shared loop
 // at exactly the same points of the unit circle for both halves.

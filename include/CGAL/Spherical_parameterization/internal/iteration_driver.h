@@ -1,3 +1,10 @@
+// Copyright (c) 2026 CGAL Spherical Parameterization contributors.
+// This file is part of CGAL Spherical Parameterization, a package in CGAL's style (www.cgal.org).
+//
+// SPDX-License-Identifier: GPL-3.0-or-later
+//
+// Author(s)     : CGAL Spherical Parameterization contributors
+
 // The loop that every iterative stage shares (stage 2's Gauss-Seidel, the paper's local Newton, the Moebius-aware
 // and the cautious Newton): Iteration_driver owns the caps, the time budget, progress and cancellation, stagnation,
 // the best iterate and the counters; a stage supplies only its iteration. It also measures each iterate once (Res

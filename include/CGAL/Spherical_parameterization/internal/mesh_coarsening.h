@@ -1,3 +1,10 @@
+// Copyright (c) 2026 CGAL Spherical Parameterization contributors.
+// This file is part of CGAL Spherical Parameterization, a package in CGAL's style (www.cgal.org).
+//
+// SPDX-License-Identifier: GPL-3.0-or-later
+//
+// Author(s)     : CGAL Spherical Parameterization contributors
+
 // The multilevel start (beyond the paper): a coarser genus-0 mesh by half-edge collapses, and the way back.
 //
 // Each round removes an independent set of vertices (no two removed vertices adjacent), each by collapsing it into

@@ -1,3 +1,10 @@
+// Copyright (c) 2026 CGAL Spherical Parameterization contributors.
+// This file is part of CGAL Spherical Parameterization, a package in CGAL's style (www.cgal.org).
+//
+// SPDX-License-Identifier: GPL-3.0-or-later
+//
+// Author(s)     : CGAL Spherical Parameterization contributors
+
 // Stages 2 and 3 of the paper on the flat arrays of a Sphere_system:
 //  - projected Gauss-Seidel (Section 3.2), stopped as soon as the residual grows;
 //  - local Newton (Section 3.3): each vertex in turn, in a frame where it sits on the x-axis, takes a Newton step

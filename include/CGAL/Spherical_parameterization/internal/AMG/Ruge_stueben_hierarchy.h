@@ -1,3 +1,10 @@
+// Copyright (c) 2026 CGAL Spherical Parameterization contributors.
+// This file is part of CGAL Spherical Parameterization, a package in CGAL's style (www.cgal.org).
+//
+// SPDX-License-Identifier: GPL-3.0-or-later
+//
+// Author(s)     : CGAL Spherical Parameterization contributors
+
 // Classical (Ruge-Stueben) algebraic multigrid: strength of connection, C/F splitting,
 // classical interpolation, Galerkin coarse operators, and the V-cycle with Gauss-Seidel smoothing.
 // References: J. W. Ruge, K. Stueben, "Algebraic multigrid", in Multigrid Methods, SIAM 1987;

@@ -1,3 +1,10 @@
+// Copyright (c) 2026 CGAL Spherical Parameterization contributors.
+// This file is part of CGAL Spherical Parameterization, a package in CGAL's style (www.cgal.org).
+//
+// SPDX-License-Identifier: GPL-3.0-or-later
+//
+// Author(s)     : CGAL Spherical Parameterization contributors
+
 // Stage 3, beyond the paper: the constrained balance, for symmetric weights whose balanced map is not bijective
 // (cotangent weights can be negative: their balanced map may fold) or cannot be reached without leaving the
 // bijective maps.

@@ -1,3 +1,10 @@
+// Copyright (c) 2026 CGAL Spherical Parameterization contributors.
+// This file is part of CGAL Spherical Parameterization, a package in CGAL's style (www.cgal.org).
+//
+// SPDX-License-Identifier: GPL-3.0-or-later
+//
+// Author(s)     : CGAL Spherical Parameterization contributors
+
 // Newton's linear system in tangent coordinates (the same equations as tangent_newton_system.h), solved
 // iteratively: MINRES with the package's algebraic multigrid as preconditioner, in memory and time linear in the
 // mesh size, where a sparse factorization grows like n^1.5 in time and n log n in memory (3.3M faces: 100 s and

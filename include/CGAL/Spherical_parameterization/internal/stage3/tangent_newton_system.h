@@ -1,3 +1,10 @@
+// Copyright (c) 2026 CGAL Spherical Parameterization contributors.
+// This file is part of CGAL Spherical Parameterization, a package in CGAL's style (www.cgal.org).
+//
+// SPDX-License-Identifier: GPL-3.0-or-later
+//
+// Author(s)     : CGAL Spherical Parameterization contributors
+
 // Newton's linear system for the balance equations in tangent coordinates, for symmetric weights.
 //
 // Unknowns: a displacement d_i = a_i t1_i + b_i t2_i in the tangent plane of every x_i. Equations: the tangential

@@ -1,3 +1,10 @@
+// Copyright (c) 2026 CGAL Spherical Parameterization contributors.
+// This file is part of CGAL Spherical Parameterization, a package in CGAL's style (www.cgal.org).
+//
+// SPDX-License-Identifier: GPL-3.0-or-later
+//
+// Author(s)     : CGAL Spherical Parameterization contributors
+
 // Stage 3, beyond the paper: continuation in the weights, for symmetric weights that Newton cannot reach directly.
 //
 // Tutte's weights are the easy case: from the initial guess the Moebius-aware Newton reaches their balanced
