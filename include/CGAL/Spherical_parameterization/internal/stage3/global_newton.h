@@ -100,8 +100,8 @@ public:
         Eigen::SparseMatrix<double> normal = Eigen::SparseMatrix<double>(jacobian.transpose()) * jacobian;
         const double shift = marquardt_ * normal.diagonal().mean();
         for(int k = 0; k < normal.rows(); ++k) normal.coeffRef(k, k) += shift;
-        // The pattern of J^T J is the same at every step: order it (METIS) once, factorize every time. Ordering at
-        // every attempt cost up to six METIS calls per step (seconds between two progress reports at 10k vertices).
+        // The pattern of J^T J is the same at every step: order it (METIS) once, factorize every time (ordering it
+        // at every attempt was slow: the manual's Method section).
         if(!ldlt_analyzed_ || normal.nonZeros() != analyzed_nonzeros_) {
           const Deferred_stop_signals deferred;  // METIS orders the unknowns (see deferred_stop_signals.h)
           ldlt_.analyzePattern(normal);
@@ -308,7 +308,7 @@ inline Iteration_report global_newton(Sphere_state& state, const Iteration_optio
 {
   const Sphere_system& system = state.system();
   if(!system.symmetric) return least_squares_newton(state, options, clock);
-  // Full Newton steps through folds first: on most meshes the fastest way to the balanced map (4 to 20 steps).
+  // Full Newton steps through folds first: on most meshes the fastest way to the balanced map.
   Mobius_newton_statistics statistics;
   Iteration_report free_steps = mobius_newton(state, options, clock, &statistics, options.tuning.free_newton_patience, true);
   if(free_steps.converged || free_steps.cancelled || free_steps.out_of_time) return free_steps;
@@ -337,15 +337,14 @@ inline Iteration_report global_newton(Sphere_state& state, const Iteration_optio
     if(continuation.reached && passes_the_test()) return report;
     if(continuation.cancelled) { report.cancelled = true; return report; }
     // Where the path ends, the interior-point iterations (constrained_balance.h) continue towards the target
-    // weights' balanced map, every iterate bijective: on homer the path ends at 55% and they reach it in 16 steps.
+    // weights' balanced map, every iterate bijective.
     const Constrained_balance_report barrier = constrained_balance(state, options, clock);
     report.sweeps += barrier.newton_steps;
     if(barrier.reached && passes_the_test()) return report;
     if(barrier.cancelled) { report.cancelled = true; return report; }
     // The cautious Newton goes on from the better of the two maps (lower root mean square imbalance, the best
     // iterate's rule) and returns its best iterate, so the result is never worse than either. Where the barrier's
-    // steps stall before the tolerance (triceratops, cow), its map is the better one by far: root mean square
-    // imbalance 0.06 and 0.07, mean angle error 7.7 degrees on both, against 14.2 and 19.2 from the other start.
+    // steps stall before the tolerance, its map is usually the better one by far (the manual's Method section).
     if(!(imbalance_merit(system, state.positions()) < imbalance_merit(system, start))) state.assign(start);
   }
   Iteration_options remaining = options;
