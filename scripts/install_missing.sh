@@ -1,4 +1,11 @@
 #!/usr/bin/env bash
+# Copyright (c) 2026 CGAL Spherical Parameterization contributors.
+# This file is part of CGAL Spherical Parameterization, a package in CGAL's style (www.cgal.org).
+#
+# SPDX-License-Identifier: GPL-3.0-or-later
+#
+# Author(s)     : CGAL Spherical Parameterization contributors
+
 # Installs the Debian packages given as arguments that are not installed yet (as root, or with sudo).
 # Usage: scripts/install_missing.sh PACKAGE...
 set -euo pipefail

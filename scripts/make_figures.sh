@@ -1,4 +1,11 @@
 #!/usr/bin/env bash
+# Copyright (c) 2026 CGAL Spherical Parameterization contributors.
+# This file is part of CGAL Spherical Parameterization, a package in CGAL's style (www.cgal.org).
+#
+# SPDX-License-Identifier: GPL-3.0-or-later
+#
+# Author(s)     : CGAL Spherical Parameterization contributors
+
 # Regenerates the manual's pictures, doc/Spherical_parameterization/fig/*.png, from real meshes:
 #   stages_triceratops.png   the paper's Figure 1 (two halves, planar disks, initial sphere, final sphere)
 #   weights_triceratops.png  the paper's Figure 2 (uniform, mean-value and cotangent weights)

@@ -1,4 +1,11 @@
 #!/usr/bin/env bash
+# Copyright (c) 2026 CGAL Spherical Parameterization contributors.
+# This file is part of CGAL Spherical Parameterization, a package in CGAL's style (www.cgal.org).
+#
+# SPDX-License-Identifier: GPL-3.0-or-later
+#
+# Author(s)     : CGAL Spherical Parameterization contributors
+
 # The benchmark (the paper's Table 1, and beyond): set up and build, make the large meshes, run every mesh in its
 # own process (so that the peak memory is the mesh's own), write a CSV, then print the table, the speed-up over the
 # paper's local Newton and the fitted exponent of time against faces.

@@ -1,4 +1,11 @@
 #!/usr/bin/env bash
+# Copyright (c) 2026 CGAL Spherical Parameterization contributors.
+# This file is part of CGAL Spherical Parameterization, a package in CGAL's style (www.cgal.org).
+#
+# SPDX-License-Identifier: GPL-3.0-or-later
+#
+# Author(s)     : CGAL Spherical Parameterization contributors
+
 # Every closed genus-0 mesh of CGAL's sample data (data/meshes of libcgal-dev's data.tar.gz: the 48 that pass the
 # input checks) and of ../shared/meshes, mapped by the command line, one process each, default settings unless
 # options are given (they are passed on, e.g. `-w cotangent` or `--start two_disks`). Meshes the input checks

@@ -1,4 +1,11 @@
 #!/usr/bin/env bash
+# Copyright (c) 2026 CGAL Spherical Parameterization contributors.
+# This file is part of CGAL Spherical Parameterization, a package in CGAL's style (www.cgal.org).
+#
+# SPDX-License-Identifier: GPL-3.0-or-later
+#
+# Author(s)     : CGAL Spherical Parameterization contributors
+
 # Installs what is missing (Debian 12, as root or with sudo), configures and builds into ${BUILD_DIR:-build}.
 # Usage: scripts/setup.sh [cmake build targets...]   (no target: everything)
 set -euo pipefail

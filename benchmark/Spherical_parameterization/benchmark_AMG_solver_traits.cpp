@@ -1,3 +1,10 @@
+// Copyright (c) 2026 CGAL Spherical Parameterization contributors.
+// This file is part of CGAL Spherical Parameterization, a package in CGAL's style (www.cgal.org).
+//
+// SPDX-License-Identifier: GPL-3.0-or-later
+//
+// Author(s)     : CGAL Spherical Parameterization contributors
+
 // Benchmark of CGAL::Spherical_parameterization::AMG_solver_traits against Eigen's solvers:
 // setup and solve times for two right-hand sides (u and v, as in a disk parameterization) to a relative
 // residual of 1e-10, iterations, residual, and the peak memory added by each method.
@@ -107,7 +114,7 @@ System mesh_disk_system(const std::string& path, bool mean_value)
   std::vector<char> is_border(mesh.number_of_vertices(), 0);
   for(std::size_t k = 0; k < border.size(); ++k)
   {
-    const double angle = 2. * M_PI * double(k) / double(border.size());
+    const double angle = 2. * CGAL_PI * double(k) / double(border.size());
     uv[border[k]] = Eigen::Vector2d(std::cos(angle), std::sin(angle));
     is_border[border[k]] = 1;
   }

@@ -1,3 +1,10 @@
+// Copyright (c) 2026 CGAL Spherical Parameterization contributors.
+// This file is part of CGAL Spherical Parameterization, a package in CGAL's style (www.cgal.org).
+//
+// SPDX-License-Identifier: GPL-3.0-or-later
+//
+// Author(s)     : CGAL Spherical Parameterization contributors
+
 // The whole pipeline on a list of meshes, printed as a table in the style of the paper's Table 1 (and as CSV).
 //
 //   benchmark_spherical_parameterization [--runs N] [--weights uniform,mean_value,cotangent]

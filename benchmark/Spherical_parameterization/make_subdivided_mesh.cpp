@@ -1,3 +1,10 @@
+// Copyright (c) 2026 CGAL Spherical Parameterization contributors.
+// This file is part of CGAL Spherical Parameterization, a package in CGAL's style (www.cgal.org).
+//
+// SPDX-License-Identifier: GPL-3.0-or-later
+//
+// Author(s)     : CGAL Spherical Parameterization contributors
+
 // Makes the large benchmark meshes: CGAL's Loop subdivision of a real mesh (armadillo: 2 rounds give
 // 832,000 faces, 3 rounds 3,328,000), so that no large file is committed.
 //   make_subdivided_mesh INPUT ROUNDS OUTPUT

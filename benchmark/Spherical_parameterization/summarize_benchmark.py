@@ -1,4 +1,11 @@
 #!/usr/bin/env python3
+# Copyright (c) 2026 CGAL Spherical Parameterization contributors.
+# This file is part of CGAL Spherical Parameterization, a package in CGAL's style (www.cgal.org).
+#
+# SPDX-License-Identifier: GPL-3.0-or-later
+#
+# Author(s)     : CGAL Spherical Parameterization contributors
+
 """Summarizes the CSV of benchmark_spherical_parameterization: a Markdown table, the speed-up of the default
 (global) solver over the paper's local Newton, the exponent of time against faces (least squares in log-log), and
 the time to reach each tolerance.

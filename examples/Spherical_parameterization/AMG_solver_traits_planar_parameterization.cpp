@@ -1,3 +1,10 @@
+// Copyright (c) 2026 CGAL Spherical Parameterization contributors.
+// This file is part of CGAL Spherical Parameterization, a package in CGAL's style (www.cgal.org).
+//
+// SPDX-License-Identifier: GPL-3.0-or-later
+//
+// Author(s)     : CGAL Spherical Parameterization contributors
+
 // AMG_solver_traits wherever CGAL takes a sparse linear solver: here CGAL's own planar parameterization of a
 // disk mesh (discrete conformal map), then the traits on their own: one setup, several right-hand sides.
 //   AMG_solver_traits_planar_parameterization [disk_mesh.off]

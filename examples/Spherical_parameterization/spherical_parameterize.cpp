@@ -1,3 +1,10 @@
+// Copyright (c) 2026 CGAL Spherical Parameterization contributors.
+// This file is part of CGAL Spherical Parameterization, a package in CGAL's style (www.cgal.org).
+//
+// SPDX-License-Identifier: GPL-3.0-or-later
+//
+// Author(s)     : CGAL Spherical Parameterization contributors
+
 // Command line: map a closed genus-0 triangle mesh onto the unit sphere, bijectively.
 //
 //   spherical_parameterize input.(off|off.gz|obj|ply|stl|gii) [-o sphere.off] [options]  (--help for all of them)
@@ -9,7 +16,7 @@
 
 #include <CGAL/Spherical_parameterization/IO/brain_surfaces.h>
 #include <CGAL/Spherical_parameterization/IO/read_polygon_soup.h>
-#include <CGAL/Spherical_parameterization/is_bijective_on_sphere.h>
+#include <CGAL/Spherical_parameterization/certify_sphere_map.h>
 #include <CGAL/Spherical_parameterization/check_input.h>
 #include <CGAL/Spherical_parameterization/spherical_parameterize.h>
 

@@ -1,3 +1,10 @@
+// Copyright (c) 2026 CGAL Spherical Parameterization contributors.
+// This file is part of CGAL Spherical Parameterization, a package in CGAL's style (www.cgal.org).
+//
+// SPDX-License-Identifier: GPL-3.0-or-later
+//
+// Author(s)     : CGAL Spherical Parameterization contributors
+
 // Custom weights through a property map: cotangent weights clamped to stay positive.
 //
 // Cotangent weights preserve angles best but may be negative, and the theory of bijective spherical embeddings
@@ -9,7 +16,7 @@
 #include <CGAL/Polygon_mesh_processing/IO/polygon_mesh_io.h>
 #include <CGAL/Surface_mesh.h>
 
-#include <CGAL/Spherical_parameterization/is_bijective_on_sphere.h>
+#include <CGAL/Spherical_parameterization/measure_spherical_distortion.h>
 #include <CGAL/Spherical_parameterization/spherical_parameterize.h>
 
 #include <algorithm>

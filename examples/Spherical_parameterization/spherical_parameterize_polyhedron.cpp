@@ -1,3 +1,10 @@
+// Copyright (c) 2026 CGAL Spherical Parameterization contributors.
+// This file is part of CGAL Spherical Parameterization, a package in CGAL's style (www.cgal.org).
+//
+// SPDX-License-Identifier: GPL-3.0-or-later
+//
+// Author(s)     : CGAL Spherical Parameterization contributors
+
 // A Polyhedron_3 (or any model of FaceListGraph) onto the unit sphere: check the input first, keep the sphere
 // positions in a dynamic property map, then move the polyhedron's own points onto the sphere.
 //   spherical_parameterize_polyhedron [input.off] [output.off]

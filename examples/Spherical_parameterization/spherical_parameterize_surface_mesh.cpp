@@ -1,3 +1,10 @@
+// Copyright (c) 2026 CGAL Spherical Parameterization contributors.
+// This file is part of CGAL Spherical Parameterization, a package in CGAL's style (www.cgal.org).
+//
+// SPDX-License-Identifier: GPL-3.0-or-later
+//
+// Author(s)     : CGAL Spherical Parameterization contributors
+
 // Maps a closed genus-0 Surface_mesh onto the unit sphere, bijectively, and writes the sphere.
 //   spherical_parameterize_surface_mesh [input.off] [output.off]
 
@@ -5,7 +12,7 @@
 #include <CGAL/Polygon_mesh_processing/IO/polygon_mesh_io.h>
 #include <CGAL/Surface_mesh.h>
 
-#include <CGAL/Spherical_parameterization/is_bijective_on_sphere.h>
+#include <CGAL/Spherical_parameterization/certify_sphere_map.h>
 #include <CGAL/Spherical_parameterization/spherical_parameterize.h>
 
 #include <cstdlib>

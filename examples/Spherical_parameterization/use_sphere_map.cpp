@@ -1,3 +1,10 @@
+// Copyright (c) 2026 CGAL Spherical Parameterization contributors.
+// This file is part of CGAL Spherical Parameterization, a package in CGAL's style (www.cgal.org).
+//
+// SPDX-License-Identifier: GPL-3.0-or-later
+//
+// Author(s)     : CGAL Spherical Parameterization contributors
+
 // Using a spherical parameterization:
 //  1. longitude/latitude texture coordinates, written as a textured OBJ;
 //  2. a per-vertex value transferred onto an icosphere: each icosphere vertex is located in the spherical

@@ -1,3 +1,10 @@
+// Copyright (c) 2026 CGAL Spherical Parameterization contributors.
+// This file is part of CGAL Spherical Parameterization, a package in CGAL's style (www.cgal.org).
+//
+// SPDX-License-Identifier: GPL-3.0-or-later
+//
+// Author(s)     : CGAL Spherical Parameterization contributors
+
 // libFuzzer target: OFF text -> parse_OFF -> check_polygon_soup -> spherical_parameterize -> certificate.
 // Built by scripts/run_sanitizers.sh with clang, -fsanitize=fuzzer,address,undefined. Besides crashes, leaks and
 // undefined behaviour, it stops on a broken promise of the package:
@@ -8,8 +15,8 @@
 // Inputs are capped (64 KiB, 400 vertices, 0.25 s of iterations) so that the fuzzer explores instead of solving.
 
 #include <CGAL/Spherical_parameterization/IO/read_polygon_soup.h>
+#include <CGAL/Spherical_parameterization/certify_sphere_map.h>
 #include <CGAL/Spherical_parameterization/check_input.h>
-#include <CGAL/Spherical_parameterization/is_bijective_on_sphere.h>
 #include <CGAL/Spherical_parameterization/spherical_parameterize.h>
 
 #include <CGAL/Exact_predicates_inexact_constructions_kernel.h>

@@ -1,3 +1,10 @@
+// Copyright (c) 2026 CGAL Spherical Parameterization contributors.
+// This file is part of CGAL Spherical Parameterization, a package in CGAL's style (www.cgal.org).
+//
+// SPDX-License-Identifier: GPL-3.0-or-later
+//
+// Author(s)     : CGAL Spherical Parameterization contributors
+
 // Tests of CGAL::Spherical_parameterization::AMG_solver_traits: accuracy against Eigen's SparseLU on disk
 // systems of real meshes (uniform, cotangent, mean-value weights; with and without CGAL's identity border rows),
 // iteration counts on Poisson grids, use through CGAL's Fixed_border_parameterizer_3, and failure on bad input.
@@ -99,7 +106,7 @@ Disk_system build_disk_system(const Mesh& mesh, Weighting weighting, bool keep_b
   std::vector<char> is_border(mesh.number_of_vertices(), 0);
   for(std::size_t k = 0; k < border.size(); ++k)
   {
-    const double angle = 2. * M_PI * arc_length[k] / arc_length.back();
+    const double angle = 2. * CGAL_PI * arc_length[k] / arc_length.back();
     border_uv[border[k]] = Eigen::Vector2d(std::cos(angle), std::sin(angle));
     is_border[border[k]] = 1;
   }

@@ -1,4 +1,11 @@
 #!/usr/bin/env bash
+# Copyright (c) 2026 CGAL Spherical Parameterization contributors.
+# This file is part of CGAL Spherical Parameterization, a package in CGAL's style (www.cgal.org).
+#
+# SPDX-License-Identifier: GPL-3.0-or-later
+#
+# Author(s)     : CGAL Spherical Parameterization contributors
+
 # Brain-surface formats through the command line, checked with an independent reader and writer (nibabel): FreeSurfer
 # and GIfTI in and out on cortices written by nibabel, other GIfTI encodings and byte orders written here by nibabel,
 # the vertex order and triangles kept, and the float32 certificate of the coordinates as written.

@@ -1,4 +1,11 @@
 #!/usr/bin/env bash
+# Copyright (c) 2026 CGAL Spherical Parameterization contributors.
+# This file is part of CGAL Spherical Parameterization, a package in CGAL's style (www.cgal.org).
+#
+# SPDX-License-Identifier: GPL-3.0-or-later
+#
+# Author(s)     : CGAL Spherical Parameterization contributors
+
 # The cohort recipe of the manual: GNU parallel over a folder of surfaces, one job killed midway (SIGTERM, as a
 # scheduler sends it), then the same recipe run again. Every output must be certified, nothing half-written, and
 # nothing redone that was done. Also: the Slurm array script on one task, and gather_runs.py over the logs.

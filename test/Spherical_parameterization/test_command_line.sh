@@ -1,4 +1,11 @@
 #!/usr/bin/env bash
+# Copyright (c) 2026 CGAL Spherical Parameterization contributors.
+# This file is part of CGAL Spherical Parameterization, a package in CGAL's style (www.cgal.org).
+#
+# SPDX-License-Identifier: GPL-3.0-or-later
+#
+# Author(s)     : CGAL Spherical Parameterization contributors
+
 # The command-line tool as a user meets it: exit codes, messages, and an output with the input's vertex order
 # and face list. Usage: test_command_line.sh TOOL SHARED_MESHES BUNDLED_MESH SCRATCH_DIR
 set -u

@@ -1,3 +1,10 @@
+// Copyright (c) 2026 CGAL Spherical Parameterization contributors.
+// This file is part of CGAL Spherical Parameterization, a package in CGAL's style (www.cgal.org).
+//
+// SPDX-License-Identifier: GPL-3.0-or-later
+//
+// Author(s)     : CGAL Spherical Parameterization contributors
+
 // The whole pipeline on one real mesh, as a ctest case:
 //   test_mesh_corpus MESH WEIGHTS[_morton_order] [--known-failure REASON]
 // Passes when the status is OK, every vertex is balanced (imbalance e_i <= 1e-6, or its rounding floor; recomputed
@@ -12,8 +19,8 @@
 // CPU time (building the Surface_mesh, the caller's part, is not counted). CODE OK means the file must be mapped with uniform weights and certified bijective.
 
 #include <CGAL/Spherical_parameterization/IO/read_polygon_soup.h>
+#include <CGAL/Spherical_parameterization/certify_sphere_map.h>
 #include <CGAL/Spherical_parameterization/check_input.h>
-#include <CGAL/Spherical_parameterization/is_bijective_on_sphere.h>
 #include <CGAL/Spherical_parameterization/spherical_parameterize.h>
 
 #include <CGAL/Exact_predicates_inexact_constructions_kernel.h>

@@ -1,12 +1,19 @@
+// Copyright (c) 2026 CGAL Spherical Parameterization contributors.
+// This file is part of CGAL Spherical Parameterization, a package in CGAL's style (www.cgal.org).
+//
+// SPDX-License-Identifier: GPL-3.0-or-later
+//
+// Author(s)     : CGAL Spherical Parameterization contributors
+
 // Unit tests: each stage alone, the certificate, the input checks and the public API.
 
 #include <CGAL/Spherical_parameterization/IO/brain_surfaces.h>
 #include <CGAL/Spherical_parameterization/IO/read_polygon_soup.h>
 #include <CGAL/Spherical_parameterization/check_input.h>
-#include <CGAL/Spherical_parameterization/is_bijective_on_sphere.h>
+#include <CGAL/Spherical_parameterization/internal/stage3/constrained_balance.h>
+#include <CGAL/Spherical_parameterization/internal/stage3/imbalance_least_squares.h>
+#include <CGAL/Spherical_parameterization/is_bijective_on_sphere.h>  // certificate and distortion, through the header kept for earlier code
 #include <CGAL/Spherical_parameterization/spherical_parameterize.h>
-#include <CGAL/Spherical_parameterization/internal/constrained_balance.h>
-#include <CGAL/Spherical_parameterization/internal/imbalance_least_squares.h>
 
 #include <CGAL/Exact_predicates_exact_constructions_kernel.h>
 #include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
@@ -14,6 +21,7 @@
 #include <CGAL/IO/polygon_soup_io.h>
 #include <CGAL/Polygon_mesh_processing/IO/polygon_mesh_io.h>
 #include <CGAL/Polyhedron_3.h>
+#include <CGAL/Real_timer.h>
 #include <CGAL/Subdivision_method_3/subdivision_methods_3.h>
 #include <CGAL/Surface_mesh.h>
 #include <CGAL/boost/graph/generators.h>
@@ -44,6 +52,14 @@ using Mesh = CGAL::Surface_mesh<Point>;
 using Polyhedron = CGAL::Polyhedron_3<Kernel>;
 
 namespace {
+
+// The clock the iterations take, started now (as spherical_parameterize() starts it at the beginning of the call).
+CGAL::Real_timer started_timer()
+{
+  CGAL::Real_timer timer;
+  timer.start();
+  return timer;
+}
 
 const std::string shared_meshes = SP_SHARED_MESHES;
 const std::string cgal_data = SP_CGAL_DATA;
@@ -289,7 +305,7 @@ void expect_two_disks(const SPI::Sphere_system& system, const SPI::Two_disk_part
 // ---------------------------------------------------------------------------------------------------------------
 // Input checks
 
-TEST(InputCheck, AcceptsClosedGenusZeroSolids)
+TEST(CheckInput, AcceptsClosedGenusZeroSolids)
 {
   for(const Arrays& a : {tetrahedron(), octahedron(), cube(), icosahedron()})
     EXPECT_EQ(SP::check_polygon_soup(a.points, a.faces).status, SP::Error_code::OK);
@@ -297,7 +313,7 @@ TEST(InputCheck, AcceptsClosedGenusZeroSolids)
   EXPECT_TRUE(SP::check_input(m));
 }
 
-TEST(InputCheck, NamesEachDefect)
+TEST(CheckInput, NamesEachDefect)
 {
   Arrays open = octahedron();
   open.faces.pop_back();
@@ -356,7 +372,7 @@ TEST(InputCheck, NamesEachDefect)
 // ---------------------------------------------------------------------------------------------------------------
 // Stage 1: separator -> two disks -> Moebius -> stereographic projection
 
-TEST(TwoDisks, TinyMeshes)
+TEST(TwoDiskPartition, TinyMeshes)
 {
   const std::map<std::string, Arrays> tiny = {{"tetrahedron", tetrahedron()}, {"octahedron", octahedron()},
                                               {"cube", cube()}, {"icosahedron", icosahedron()}};
@@ -372,7 +388,7 @@ TEST(TwoDisks, TinyMeshes)
   }
 }
 
-TEST(TwoDisks, RealMeshesAndSeeds)
+TEST(TwoDiskPartition, RealMeshesAndSeeds)
 {
   const std::vector<std::string> files = {shared_meshes + "/trimesh_fuze.off", shared_meshes + "/npm_bunny.off",
                                           shared_meshes + "/oscad_pcbvicebar.off", shared_meshes + "/oded_wingnut.off",
@@ -393,7 +409,7 @@ TEST(TwoDisks, RealMeshesAndSeeds)
   }
 }
 
-TEST(MoebiusStereographic, CircleToEquatorHalvesToHemispheres)
+TEST(InitialSphere, CircleToEquatorHalvesToHemispheres)
 {
   for(int k = 0; k < 16; ++k) {
     const double t = 2 * CGAL_PI * k / 16;
@@ -434,7 +450,7 @@ TEST(MoebiusStereographic, CircleToEquatorHalvesToHemispheres)
 // ---------------------------------------------------------------------------------------------------------------
 // Stages 2 and 3
 
-TEST(GaussSeidel, StopsWhenTheResidualRises)
+TEST(ProjectedGaussSeidel, StopsWhenTheResidualRises)
 {
   for(const std::string file : {cgal_data + "/triceratops.off", shared_meshes + "/trimesh_fuze.off"}) {
     const SPI::Mesh_arrays arrays = arrays_of(read_mesh(file));
@@ -446,7 +462,7 @@ TEST(GaussSeidel, StopsWhenTheResidualRises)
     options.tolerance = 0.;  // never converged: only the rule may stop it
     options.max_gauss_seidel_sweeps = 100000;
     options.progress = [&](const char*, std::size_t, double residual, std::size_t) { history.push_back(residual); return true; };
-    const SPI::Iteration_report report = SPI::projected_gauss_seidel(state, options, SPI::Stopwatch());
+    const SPI::Iteration_report report = SPI::projected_gauss_seidel(state, options, started_timer());
     ASSERT_GE(history.size(), 2u) << file;
     EXPECT_LT(report.sweeps, options.max_gauss_seidel_sweeps) << file;
     for(std::size_t k = 1; k + 1 < history.size(); ++k) EXPECT_LT(history[k], history[k - 1]) << file << " sweep " << k;
@@ -661,7 +677,7 @@ TEST(Mobius, BoostGradientJacobianMatchesFiniteDifferences)
 
 // From stages 1 and 2, Newton with the boosts handled exactly reaches machine precision in a few steps, and the
 // residual falls at least quadratically once small.
-TEST(GlobalNewton, MobiusNewtonConvergesQuadratically)
+TEST(MobiusNewton, ConvergesQuadratically)
 {
   for(const std::string file : {cgal_data + "/triceratops.off", shared_meshes + "/npm_bunny.off", shared_meshes + "/trimesh_fuze.off"}) {
     const SPI::Mesh_arrays arrays = arrays_of(read_mesh(file));
@@ -671,11 +687,11 @@ TEST(GlobalNewton, MobiusNewtonConvergesQuadratically)
     SPI::Iteration_options options;
     options.tolerance = 1e-15;
     options.convergence_test = SP::Convergence_test::PAPER_RESIDUAL;  // Res, whose quadratic decrease is checked
-    SPI::projected_gauss_seidel(state, options, SPI::Stopwatch());
+    SPI::projected_gauss_seidel(state, options, started_timer());
     std::vector<double> history;
     options.progress = [&](const char*, std::size_t, double residual, std::size_t) { history.push_back(residual); return true; };
     SPI::Mobius_newton_statistics statistics;
-    const SPI::Iteration_report report = SPI::mobius_newton(state, options, SPI::Stopwatch(), &statistics);
+    const SPI::Iteration_report report = SPI::mobius_newton(state, options, started_timer(), &statistics);
     EXPECT_TRUE(report.converged) << file;
     EXPECT_FALSE(statistics.gave_up) << file;
     EXPECT_LE(report.sweeps, 8u) << file;
@@ -713,7 +729,7 @@ TEST(BrainSurfaces, FreeSurferRoundTripIsByteIdentical)
 volatile std::sig_atomic_t stop_signals_seen = 0;
 extern "C" void count_stop_signal(int) { stop_signals_seen = stop_signals_seen + 1; }
 
-TEST(StopSignals, DeferredAroundMetisNotLost)
+TEST(DeferredStopSignals, NotLostAroundMetis)
 {
   void (*previous)(int) = std::signal(SIGTERM, count_stop_signal);
   stop_signals_seen = 0;
@@ -733,7 +749,7 @@ TEST(StopSignals, DeferredAroundMetisNotLost)
 
 // MINRES on a symmetric indefinite matrix (a path Laplacian shifted so that a few eigenvalues are negative) with a
 // positive definite preconditioner (the inverse diagonal of the unshifted Laplacian): the true residual is small.
-TEST(NewtonKrylov, MinresSolvesAnIndefiniteSystem)
+TEST(KrylovSolvers, MinresSolvesAnIndefiniteSystem)
 {
   const int n = 400;
   const double shift = 0.05;  // eigenvalues 2 - 2 cos(k pi / (n + 1)) - shift: about 29 of them negative
@@ -755,7 +771,7 @@ TEST(NewtonKrylov, MinresSolvesAnIndefiniteSystem)
 // Newton's full steps with the iterative linear solver (a mesh above iterative_newton_min_vertices): they reach the
 // imbalance test from the initial guess, each linear solve takes a handful of MINRES iterations (the multigrid
 // preconditioner works), and the last steps converge fast.
-TEST(NewtonKrylov, FullStepsConvergeWithFewMinresIterations)
+TEST(TangentKrylovSystem, FullStepsConvergeWithFewMinresIterations)
 {
   const SPI::Mesh_arrays arrays = arrays_of(read_mesh(shared_meshes + "/gary_david.off"));
   const SPI::Sphere_system system = system_of(arrays);
@@ -768,7 +784,7 @@ TEST(NewtonKrylov, FullStepsConvergeWithFewMinresIterations)
     imbalance.push_back(SPI::summarize_imbalance(system, x, options.tolerance).max);
     return true;
   };
-  const SPI::Iteration_report report = SPI::mobius_newton(state, options, SPI::Stopwatch(), nullptr, SPI::Solver_tuning().free_newton_patience, true);
+  const SPI::Iteration_report report = SPI::mobius_newton(state, options, started_timer(), nullptr, SPI::Solver_tuning().free_newton_patience, true);
   ASSERT_TRUE(report.converged);
   EXPECT_GT(report.linear_iterations, 0u);
   EXPECT_LE(report.linear_iterations, 25 * report.sweeps);
@@ -783,7 +799,7 @@ TEST(NewtonKrylov, FullStepsConvergeWithFewMinresIterations)
 
 // The multilevel start's coarsening keeps a valid closed genus-0 mesh, and the way back keeps a bijective coarse map
 // bijective: each removed vertex is inserted where its fan is positive (up to rounding on the tiniest triangles).
-TEST(Multilevel, CoarseningAndProlongationKeepGenusZeroAndPositiveFans)
+TEST(MeshCoarsening, CoarseningAndProlongationKeepGenusZeroAndPositiveFans)
 {
   for(const char* name : {"/gary_david.off", "/oded_springer.off"}) {
     const SPI::Mesh_arrays arrays = arrays_of(read_mesh(shared_meshes + name));
@@ -793,7 +809,9 @@ TEST(Multilevel, CoarseningAndProlongationKeepGenusZeroAndPositiveFans)
     EXPECT_EQ(kept + coarsening.removed.size(), n) << name;
     EXPECT_LE(kept, n / 4 + n / 50) << name << ": the collapses stopped early";
     EXPECT_EQ(coarsening.coarse.triangles.size(), 2 * kept - 4) << name << ": Euler's formula for genus 0";
-    const SP::Input_check check = SPI::check_mesh_arrays(coarsening.coarse);
+    SPI::Mesh_arrays coarse_soup = coarsening.coarse;  // the coarse mesh has triangles only: the checks read polygons
+    for(const auto& t : coarse_soup.triangles) coarse_soup.polygons.push_back({t[0], t[1], t[2]});
+    const SP::Input_check check = SPI::check_mesh_arrays(coarse_soup);
     EXPECT_TRUE(check) << name << ": " << check.message;
     SPI::Sphere_system coarse_system = system_of(coarsening.coarse);
     std::vector<SPI::Vector3> coarse_x;
@@ -814,7 +832,7 @@ TEST(Multilevel, CoarseningAndProlongationKeepGenusZeroAndPositiveFans)
 
 // The multilevel start (the default on meshes of 20,000 vertices or more) and the paper's two-disk start reach the
 // same criterion; the levels are reported, coarsest first, with the input mesh last.
-TEST(Multilevel, ConvergesAndReportsItsLevels)
+TEST(MultilevelStart, ConvergesAndReportsItsLevels)
 {
   Mesh mesh = read_mesh(shared_meshes + "/brainspace_conte69_32k_lh.off");
   ASSERT_GE(num_vertices(mesh), SPI::Solver_tuning().multilevel_min_vertices);
@@ -837,7 +855,7 @@ TEST(Multilevel, ConvergesAndReportsItsLevels)
 
 // Cotangent weights made admissible (symmetric, positive) on cow: Newton alone gives up, the continuation from
 // Tutte's weights reaches their solution. Plain cotangent weights on triceratops: the path of solutions ends early.
-TEST(GlobalNewton, ContinuationFromTutteWeights)
+TEST(WeightContinuation, FromTutteWeights)
 {
   {
     const SPI::Mesh_arrays arrays = arrays_of(read_mesh(cgal_data + "/cow.off"));
@@ -847,7 +865,7 @@ TEST(GlobalNewton, ContinuationFromTutteWeights)
     SPI::Iteration_options options;
     options.tolerance = 1e-12;
     options.convergence_test = SP::Convergence_test::PAPER_RESIDUAL;
-    const SPI::Continuation_report report = SPI::weight_continuation(system, x, options, SPI::Stopwatch());
+    const SPI::Continuation_report report = SPI::weight_continuation(system, x, options, started_timer());
     EXPECT_TRUE(report.reached);
     EXPECT_LT(SPI::compute_residuals(system, x).paper, 1e-12);
     EXPECT_TRUE(SPI::certify(system.triangles, x).bijective);
@@ -858,7 +876,7 @@ TEST(GlobalNewton, ContinuationFromTutteWeights)
     std::vector<SPI::Vector3> x = initial_sphere_of(arrays, system);
     SPI::Iteration_options options;
     options.max_seconds = 60.;
-    const SPI::Continuation_report report = SPI::weight_continuation(system, x, options, SPI::Stopwatch());
+    const SPI::Continuation_report report = SPI::weight_continuation(system, x, options, started_timer());
     EXPECT_FALSE(report.reached);
     EXPECT_GT(report.last_parameter, 0.5);
     EXPECT_LT(report.last_parameter, 0.95);
@@ -998,7 +1016,7 @@ TEST(ImbalanceLeastSquares, JacobianAndGradientMatchFiniteDifferences)
   }
 }
 
-TEST(Weights, AdmissibleWeightsAreSymmetricAndPositive)
+TEST(AdmissibleWeights, AreSymmetricAndPositive)
 {
   const SPI::Mesh_arrays arrays = arrays_of(read_mesh(cgal_data + "/triceratops.off"));
   for(SP::Weighting weighting : {SP::Weighting::COTANGENT, SP::Weighting::MEAN_VALUE}) {
@@ -1355,7 +1373,7 @@ Arrays arrays_from_file(const std::string& path)
   return a;
 }
 
-TEST(NoBalancedSolution, InscribabilityProofOnlyWhereItHolds)
+TEST(Inscribability, ProofOnlyWhereItHolds)
 {
   for(const Arrays& a : {tetrahedron(), octahedron(), cube(), icosahedron()}) {
     const SPI::Mesh_arrays arrays = arrays_of(to_mesh(a));
@@ -1371,7 +1389,7 @@ TEST(NoBalancedSolution, InscribabilityProofOnlyWhereItHolds)
   EXPECT_TRUE(triakis.edge_outside_set);
 }
 
-TEST(NoBalancedSolution, ClearStatusAndCertifiedFallbackMap)
+TEST(SphericalParameterize, NoBalancedSolutionClearStatusAndCertifiedFallbackMap)
 {
   const Arrays triakis = split_faces_at_centres(tetrahedron(), 0.3);
   const Arrays split_bunny = split_faces_at_centres(arrays_from_file(shared_meshes + "/npm_bunny.off"), 0.);
@@ -1418,7 +1436,7 @@ TEST(NoBalancedSolution, ClearStatusAndCertifiedFallbackMap)
   }
 }
 
-TEST(Progress, CallbackFollowsTheStagesAndCancels)
+TEST(ProgressCallback, FollowsTheStagesAndCancels)
 {
   const Mesh mesh = read_mesh(cgal_data + "/triceratops.off");
   std::vector<std::string> stages;
@@ -1461,7 +1479,7 @@ TEST(Progress, CallbackFollowsTheStagesAndCancels)
 // callback must still be asked (the stage-1 report repeated, every half second) so that a cancel takes effect. On
 // cow.off they run until the time budget (known failure), so without those repeats the call ends NOT_CONVERGED
 // after the whole budget (as the command line did after a SIGTERM: minutes on man.off).
-TEST(Progress, CancelsTheLeastSquaresIterationsOfMeanValueWeights)
+TEST(ProgressCallback, CancelsTheLeastSquaresIterationsOfMeanValueWeights)
 {
   const Mesh mesh = read_mesh(cgal_data + "/cow.off");
   std::vector<double> seconds;
@@ -1627,7 +1645,7 @@ SP::IO::File_read parse(const std::string& text, std::vector<Point>& points, std
 
 } // namespace
 
-TEST(ReadOFF, VariantsCommentsAndColours)
+TEST(ReadPolygonSoup, OffVariantsCommentsAndColours)
 {
   std::vector<Point> points;
   std::vector<std::vector<std::size_t>> faces;
@@ -1643,7 +1661,7 @@ TEST(ReadOFF, VariantsCommentsAndColours)
   EXPECT_TRUE(parse("OFF 3 1 0\n0 0 0\n1 0 0\n0 1 0\n3 0 1 2\n", points, faces)) << "counts on the header's line";
 }
 
-TEST(ReadOFF, EachDefectHasItsStatus)
+TEST(ReadPolygonSoup, EachDefectHasItsStatus)
 {
   using S = SP::IO::File_status;
   std::vector<Point> points;
@@ -1685,7 +1703,7 @@ TEST(ReadOFF, EachDefectHasItsStatus)
   EXPECT_NE(parse("OFF\n3 1 0\n0 0 0\n1 0 zero\n", points, faces).message.find("line 4"), std::string::npos);
 }
 
-TEST(ReadOFF, FilesAndGzip)
+TEST(ReadPolygonSoup, FilesAndGzip)
 {
   std::vector<Point> points;
   std::vector<std::vector<std::size_t>> faces;
@@ -1816,7 +1834,7 @@ void expect_honest(const Mesh& mesh, const std::string& name, std::size_t expect
 
 } // namespace
 
-TEST(DegenerateGeometry, ZeroAreaCoincidentNeedleValence50)
+TEST(SphericalParameterize, DegenerateGeometryZeroAreaCoincidentNeedleValence50)
 {
   const std::vector<std::pair<Defect, std::string>> defects = {
       {Defect::ZERO_AREA, "zero-area face"}, {Defect::COINCIDENT, "coincident vertices"},
@@ -1830,7 +1848,7 @@ TEST(DegenerateGeometry, ZeroAreaCoincidentNeedleValence50)
   }
 }
 
-TEST(DegenerateGeometry, ClampedWeightsAreFiniteAndCounted)
+TEST(AssignWeights, ClampedWeightsAreFiniteAndCounted)
 {
   const SPI::Mesh_arrays arrays = arrays_of(to_mesh(degenerate_sphere(Defect::ALL)));
   for(SP::Weighting weighting : {SP::Weighting::COTANGENT, SP::Weighting::MEAN_VALUE}) {
@@ -1852,7 +1870,7 @@ TEST(DegenerateGeometry, ClampedWeightsAreFiniteAndCounted)
 
 // What the fuzzer found (fuzz_regressions/, see fuzz_findings.md): coordinates of 1e37 and more make edges
 // parallel in double precision and triangles span great circles. Every outcome must stay honest.
-TEST(DegenerateGeometry, FuzzerFindings)
+TEST(SphericalParameterize, FuzzerFindings)
 {
   const std::string folder = SP_SOURCE_DIR "/fuzz_regressions";
   std::size_t files = 0;
@@ -1868,7 +1886,7 @@ TEST(DegenerateGeometry, FuzzerFindings)
   EXPECT_GE(files, 3u) << folder;
 }
 
-TEST(DegenerateGeometry, CadSlivers)
+TEST(SphericalParameterize, CadSlivers)
 {
   // 260 faces with 0.0003 degree angles and valence 28.
   // Uniform weights on it are a known failure (known_failures.txt): the map collapses at the rounding floor.
@@ -1879,7 +1897,7 @@ TEST(DegenerateGeometry, CadSlivers)
 // ---------------------------------------------------------------------------------------------------------------
 // Caps: a status that says so, the best iterate and its figures, in bounded time
 
-TEST(NonConvergence, TinyCapsGiveTheBestIterateAndItsFigures)
+TEST(SphericalParameterize, TinyCapsGiveTheBestIterateAndItsFigures)
 {
   const Mesh mesh = read_mesh(shared_meshes + "/npm_bunny.off");
   const SPI::Mesh_arrays arrays = arrays_of(mesh);
@@ -1942,7 +1960,7 @@ std::vector<unsigned char> snapshot(const Mesh& m)
 
 } // namespace
 
-TEST(InputUntouched, AfterSuccessAndAfterEveryKindOfFailure)
+TEST(SphericalParameterize, InputUntouchedAfterSuccessAndAfterEveryKindOfFailure)
 {
   const Arrays triakis = split_faces_at_centres(tetrahedron(), 0.3);
   const std::vector<std::pair<std::string, Arrays>> meshes = {

@@ -1,3 +1,10 @@
+// Copyright (c) 2026 CGAL Spherical Parameterization contributors.
+// This file is part of CGAL Spherical Parameterization, a package in CGAL's style (www.cgal.org).
+//
+// SPDX-License-Identifier: GPL-3.0-or-later
+//
+// Author(s)     : CGAL Spherical Parameterization contributors
+
 // Writes the meshes of the manual's pictures as POV-Ray include files (rendered by scripts/make_figures.sh):
 // the input mesh, its two halves, the two planar disks, the initial sphere (stage 1, uniform weights) and the
 // final spheres for uniform, mean-value and cotangent weights. Every vertex is coloured by the normal of the

@@ -1,4 +1,11 @@
 #!/usr/bin/env python3
+# Copyright (c) 2026 CGAL Spherical Parameterization contributors.
+# This file is part of CGAL Spherical Parameterization, a package in CGAL's style (www.cgal.org).
+#
+# SPDX-License-Identifier: GPL-3.0-or-later
+#
+# Author(s)     : CGAL Spherical Parameterization contributors
+
 """Gathers the JSON lines of many spherical_parameterize runs (--json) into one table, one row per output.
 
   python3 gather_runs.py runs.jsonl [more.jsonl ...] > table.tsv      (or the lines on stdin)

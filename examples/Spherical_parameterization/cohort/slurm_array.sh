@@ -1,4 +1,11 @@
 #!/bin/bash
+# Copyright (c) 2026 CGAL Spherical Parameterization contributors.
+# This file is part of CGAL Spherical Parameterization, a package in CGAL's style (www.cgal.org).
+#
+# SPDX-License-Identifier: GPL-3.0-or-later
+#
+# Author(s)     : CGAL Spherical Parameterization contributors
+
 # One surface per Slurm array task: the cohort recipe of the manual on a cluster.
 #
 #   find subjects -path '*/surf/?h.white' > surfaces.txt

@@ -1,3 +1,10 @@
+// Copyright (c) 2026 CGAL Spherical Parameterization contributors.
+// This file is part of CGAL Spherical Parameterization, a package in CGAL's style (www.cgal.org).
+//
+// SPDX-License-Identifier: GPL-3.0-or-later
+//
+// Author(s)     : CGAL Spherical Parameterization contributors
+
 // The Python module `cgal_spherical_parameterization`: the package's map, certificate, distortion measure and
 // surface readers on NumPy arrays.
 //
@@ -9,8 +16,9 @@
 
 #include <CGAL/Spherical_parameterization/IO/brain_surfaces.h>
 #include <CGAL/Spherical_parameterization/IO/read_polygon_soup.h>
+#include <CGAL/Spherical_parameterization/certify_sphere_map.h>
 #include <CGAL/Spherical_parameterization/check_input.h>
-#include <CGAL/Spherical_parameterization/is_bijective_on_sphere.h>
+#include <CGAL/Spherical_parameterization/measure_spherical_distortion.h>
 #include <CGAL/Spherical_parameterization/spherical_parameterize.h>
 
 #include <CGAL/Exact_predicates_inexact_constructions_kernel.h>

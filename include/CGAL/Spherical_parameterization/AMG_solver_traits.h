@@ -1,3 +1,10 @@
+// Copyright (c) 2026 CGAL Spherical Parameterization contributors.
+// This file is part of CGAL Spherical Parameterization, a package in CGAL's style (www.cgal.org).
+//
+// SPDX-License-Identifier: GPL-3.0-or-later
+//
+// Author(s)     : CGAL Spherical Parameterization contributors
+
 // Classical Ruge-Stueben algebraic multigrid as a CGAL sparse linear solver traits class.
 
 #ifndef CGAL_SPHERICAL_PARAMETERIZATION_AMG_SOLVER_TRAITS_H
@@ -5,6 +12,7 @@
 
 #include <CGAL/Eigen_sparse_matrix.h>
 #include <CGAL/Eigen_vector.h>
+#include <CGAL/Real_timer.h>
 
 #include <CGAL/Spherical_parameterization/internal/AMG/Compressed_row_matrix.h>
 #include <CGAL/Spherical_parameterization/internal/AMG/Diagonal_row_elimination.h>
@@ -13,7 +21,6 @@
 #include <CGAL/Spherical_parameterization/internal/AMG/Ruge_stueben_hierarchy.h>
 #include <CGAL/Spherical_parameterization/internal/AMG/Setup_cache.h>
 
-#include <chrono>
 #include <climits>
 #include <cmath>
 #include <limits>
@@ -199,7 +206,6 @@ private:
   typedef internal::AMG::Index Index;
   typedef internal::AMG::Compressed_row_matrix Compressed_row_matrix;
   typedef Eigen::SparseMatrix<double, Eigen::ColMajor, int> Eigen_matrix;
-  typedef std::chrono::steady_clock Clock;
 
   struct State
   {
@@ -219,11 +225,6 @@ private:
       return direct ? direct_solver.matrix() : hierarchy.fine_matrix();
     }
   };
-
-  static double seconds_since(Clock::time_point start)
-  {
-    return std::chrono::duration<double>(Clock::now() - start).count();
-  }
 
   internal::AMG::Setup_key setup_key(const Eigen_matrix& E) const
   {
@@ -253,9 +254,10 @@ private:
       return state.cache.succeeded();
 
     state.cache.start(key);
-    const Clock::time_point start = Clock::now();
+    CGAL::Real_timer timer;
+    timer.start();
     state.cache.finish(setup(*E, state));
-    state.statistics.setup_seconds = seconds_since(start);
+    state.statistics.setup_seconds = timer.time();
     ++state.statistics.number_of_setups;
     return state.cache.succeeded();
   }
@@ -326,12 +328,13 @@ private:
   {
     State& state = *m_state;
     Statistics& statistics = state.statistics;
-    const Clock::time_point start = Clock::now();
+    CGAL::Real_timer timer;
+    timer.start();
     statistics.iterations = 0;
     statistics.relative_residual = 0.;
     ++statistics.number_of_solves;
     const bool solved = solve_reduced(B, X, state);
-    statistics.solve_seconds = seconds_since(start);
+    statistics.solve_seconds = timer.time();
     return solved;
   }
 

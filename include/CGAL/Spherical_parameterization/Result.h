@@ -1,10 +1,17 @@
+// Copyright (c) 2026 CGAL Spherical Parameterization contributors.
+// This file is part of CGAL Spherical Parameterization, a package in CGAL's style (www.cgal.org).
+//
+// SPDX-License-Identifier: GPL-3.0-or-later
+//
+// Author(s)     : CGAL Spherical Parameterization contributors
+
 // What spherical_parameterize() reports.
 
 #ifndef CGAL_SPHERICAL_PARAMETERIZATION_RESULT_H
 #define CGAL_SPHERICAL_PARAMETERIZATION_RESULT_H
 
 #include <CGAL/Spherical_parameterization/Error_code.h>
-#include <CGAL/Spherical_parameterization/parameters.h>
+#include <CGAL/Spherical_parameterization/enum.h>
 
 #include <cstddef>
 #include <string>

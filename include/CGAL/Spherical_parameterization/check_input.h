@@ -1,3 +1,10 @@
+// Copyright (c) 2026 CGAL Spherical Parameterization contributors.
+// This file is part of CGAL Spherical Parameterization, a package in CGAL's style (www.cgal.org).
+//
+// SPDX-License-Identifier: GPL-3.0-or-later
+//
+// Author(s)     : CGAL Spherical Parameterization contributors
+
 // Is a mesh a valid input (closed, connected, manifold, oriented, genus-0 triangle mesh)?
 
 #ifndef CGAL_SPHERICAL_PARAMETERIZATION_CHECK_INPUT_H
@@ -7,6 +14,7 @@
 #include <CGAL/Spherical_parameterization/internal/Mesh_arrays.h>
 
 #include <CGAL/Named_function_parameters.h>
+#include <CGAL/Union_find.h>
 #include <CGAL/boost/graph/named_params_helper.h>
 
 #include <algorithm>
@@ -31,30 +39,16 @@ struct Input_check {
 
 namespace internal {
 
-class Union_find {
-public:
-  explicit Union_find(std::size_t n) { reset(n); }
-  // n singletons again, reusing the storage.
-  void reset(std::size_t n)
-  {
-    parent_.resize(n);
-    std::iota(parent_.begin(), parent_.end(), std::size_t(0));
-  }
-  std::size_t find(std::size_t i)
-  {
-    while(parent_[i] != i) { parent_[i] = parent_[parent_[i]]; i = parent_[i]; }
-    return i;
-  }
-  bool unite(std::size_t a, std::size_t b)
-  {
-    a = find(a); b = find(b);
-    if(a == b) return false;
-    parent_[std::max(a, b)] = std::min(a, b);
-    return true;
-  }
-private:
-  std::vector<std::size_t> parent_;
-};
+// CGAL::Union_find of the indices 0 .. n-1, with one handle per index.
+using Index_sets = CGAL::Union_find<std::size_t>;
+
+inline std::vector<Index_sets::handle> make_singletons(Index_sets& sets, std::size_t n)
+{
+  std::vector<Index_sets::handle> handles;
+  handles.reserve(n);
+  for(std::size_t i = 0; i < n; ++i) handles.push_back(sets.make_set(i));
+  return handles;
+}
 
 inline Input_check make_check(Error_code code, const std::string& details = std::string())
 {
@@ -116,7 +110,8 @@ inline Input_check check_mesh_arrays(const Mesh_arrays& mesh)
   }
 
   std::size_t number_of_edges = 0, border_edges = 0, non_manifold_edges = 0, misoriented_edges = 0;
-  Union_find border_loops(nv);
+  Index_sets border_loops;
+  const std::vector<Index_sets::handle> border_vertex = make_singletons(border_loops, nv);
   std::vector<char> on_border(nv, 0);
   for(std::size_t a = 0; a < nv; ++a) {
     const auto first = uses.begin() + static_cast<std::ptrdiff_t>(bucket[a]);
@@ -130,7 +125,7 @@ inline Input_check check_mesh_arrays(const Mesh_arrays& mesh)
       if(count == 1) {
         ++border_edges;
         const std::size_t b = static_cast<std::size_t>(i->other);
-        border_loops.unite(a, b);
+        border_loops.unify_sets(border_vertex[a], border_vertex[b]);
         on_border[a] = on_border[b] = 1;
       } else if(count > 2) {
         ++non_manifold_edges;
@@ -146,7 +141,7 @@ inline Input_check check_mesh_arrays(const Mesh_arrays& mesh)
     return make_check(Error_code::NON_MANIFOLD_EDGE, std::to_string(non_manifold_edges) + " edges are shared by more than two faces");
   if(border_edges > 0) {
     std::size_t loops = 0;
-    for(std::size_t v = 0; v < nv; ++v) if(on_border[v] && border_loops.find(v) == v) ++loops;
+    for(std::size_t v = 0; v < nv; ++v) if(on_border[v] && border_loops.find(border_vertex[v]) == border_vertex[v]) ++loops;
     return make_check(Error_code::HAS_BORDER, std::to_string(border_edges) + " boundary edges in " +
                                               std::to_string(loops) + " boundary loop(s)");
   }
@@ -168,20 +163,20 @@ inline Input_check check_mesh_arrays(const Mesh_arrays& mesh)
   }
   std::size_t pinched = 0;
   std::vector<int> local;
-  Union_find ring(0);
+  Index_sets ring;
   for(std::size_t v = 0; v < nv; ++v) {
     local.clear();
     for(std::size_t k = offsets[v]; k < offsets[v + 1]; ++k) { local.push_back(link[k].first); local.push_back(link[k].second); }
     std::sort(local.begin(), local.end());
     local.erase(std::unique(local.begin(), local.end()), local.end());
-    ring.reset(local.size());
-    std::size_t components = local.size();
+    ring.clear();
+    const std::vector<Index_sets::handle> neighbour = make_singletons(ring, local.size());
     for(std::size_t k = offsets[v]; k < offsets[v + 1]; ++k) {
       const std::size_t a = static_cast<std::size_t>(std::lower_bound(local.begin(), local.end(), link[k].first) - local.begin());
       const std::size_t b = static_cast<std::size_t>(std::lower_bound(local.begin(), local.end(), link[k].second) - local.begin());
-      if(ring.unite(a, b)) --components;
+      ring.unify_sets(neighbour[a], neighbour[b]);
     }
-    if(components != 1) ++pinched;
+    if(ring.number_of_sets() != 1) ++pinched;
   }
   if(pinched > 0)
     return make_check(Error_code::NON_MANIFOLD_VERTEX, std::to_string(pinched) + " vertices have more than one fan of faces");
@@ -190,11 +185,12 @@ inline Input_check check_mesh_arrays(const Mesh_arrays& mesh)
     return make_check(Error_code::INCONSISTENT_ORIENTATION, std::to_string(misoriented_edges) +
                                                             " edges are traversed in the same direction by their two faces");
 
-  Union_find components(nv);
-  std::size_t number_of_components = nv;
+  Index_sets components;
+  const std::vector<Index_sets::handle> vertex = make_singletons(components, nv);
   for(const auto& p : mesh.polygons)
     for(int k = 0; k < 3; ++k)
-      if(components.unite(static_cast<std::size_t>(p[k]), static_cast<std::size_t>(p[(k + 1) % 3]))) --number_of_components;
+      components.unify_sets(vertex[static_cast<std::size_t>(p[k])], vertex[static_cast<std::size_t>(p[(k + 1) % 3])]);
+  const std::size_t number_of_components = components.number_of_sets();
   if(number_of_components > 1)
     return make_check(Error_code::MULTIPLE_COMPONENTS, std::to_string(number_of_components) + " connected components");
 
@@ -224,6 +220,20 @@ Mesh_arrays read_mesh_arrays(const TriangleMesh& tm, VertexIndexMap vim, const N
     y = CGAL::to_double(compute_y(p));
     z = CGAL::to_double(compute_z(p));
   });
+}
+
+// The map `vsm` of a user (the coordinates as double), stored at the indices of the `vertex_index_map` named
+// parameter, as read_mesh_arrays() stores the points.
+template <typename TriangleMesh, typename VertexSphereMap, typename NamedParameters>
+std::vector<Vector3> read_sphere_map(const TriangleMesh& tm, VertexSphereMap vsm, const NamedParameters& np)
+{
+  auto vim = CGAL::get_initialized_vertex_index_map(tm, np);
+  std::vector<Vector3> x(static_cast<std::size_t>(num_vertices(tm)));
+  for(auto v : vertices(tm)) {
+    const auto& p = get(vsm, v);
+    x[static_cast<std::size_t>(get(vim, v))] = Vector3(CGAL::to_double(p.x()), CGAL::to_double(p.y()), CGAL::to_double(p.z()));
+  }
+  return x;
 }
 
 } // namespace internal

@@ -1,3 +1,10 @@
+// Copyright (c) 2026 CGAL Spherical Parameterization contributors.
+// This file is part of CGAL Spherical Parameterization, a package in CGAL's style (www.cgal.org).
+//
+// SPDX-License-Identifier: GPL-3.0-or-later
+//
+// Author(s)     : CGAL Spherical Parameterization contributors
+
 // The copy of the disk solver that each disk gets when the two disks are embedded at the same time.
 
 #ifndef CGAL_SPHERICAL_PARAMETERIZATION_INDEPENDENT_COPY_H

@@ -1,3 +1,10 @@
+// Copyright (c) 2026 CGAL Spherical Parameterization contributors.
+// This file is part of CGAL Spherical Parameterization, a package in CGAL's style (www.cgal.org).
+//
+// SPDX-License-Identifier: GPL-3.0-or-later
+//
+// Author(s)     : CGAL Spherical Parameterization contributors
+
 // Named parameters of the Spherical_parameterization package.
 //
 // CGAL 5.5's chain members (`.vertex_point_map(...)`) come from a fixed list, so the package's own
@@ -8,6 +15,9 @@
 #ifndef CGAL_SPHERICAL_PARAMETERIZATION_PARAMETERS_H
 #define CGAL_SPHERICAL_PARAMETERIZATION_PARAMETERS_H
 
+#include <CGAL/Spherical_parameterization/Progress.h>
+#include <CGAL/Spherical_parameterization/enum.h>
+
 #include <CGAL/Named_function_parameters.h>
 
 #include <cstddef>
@@ -15,56 +25,6 @@
 
 namespace CGAL {
 namespace Spherical_parameterization {
-
-/// \ingroup PkgSphericalParameterizationRef
-/// The edge weights `w_ij` of the balance equations `alpha_i x_i = sum_j w_ij x_j`.
-enum class Weighting {
-  UNIFORM,     ///< Tutte weights `w_ij = 1`: symmetric and positive, the case covered by the theory (default).
-  COTANGENT,   ///< Conformal weights `(cot a_ij + cot b_ij) / 2`: symmetric, may be negative.
-  MEAN_VALUE,  ///< Floater's mean-value weights: positive, not symmetric.
-  USER_MAP     ///< Weights read from the `halfedge_weight_map` named parameter.
-};
-
-/// \ingroup PkgSphericalParameterizationRef
-/// The solver of stage 3 (after projected Gauss-Seidel).
-enum class Nonlinear_solver {
-  GLOBAL_NEWTON, ///< Newton on all vertices at once in tangent coordinates, with the sphere's conformal boosts handled
-                 ///< exactly and bijectivity-preserving step control (default).
-  LOCAL_NEWTON   ///< The paper's local Newton iteration on (theta, phi) with line search (Section 3.3).
-};
-
-/// \ingroup PkgSphericalParameterizationRef
-/// When the iterations stop (named parameter `convergence_test`).
-enum class Convergence_test {
-  /// Every vertex balanced in its own scale (default): the imbalance
-  /// \f$ e_i = |t_i| / \sum_j |w_{ij}| \, s(|x_j - x_i|) \f$, with \f$ t_i \f$ the tangential part of
-  /// \f$ \sum_j w_{ij} (x_j - x_i) \f$ (weights normalized to sum to one) and \f$ s(c) = c \sqrt{1 - c^2/4} \f$ the
-  /// length of an edge's tangential part, is at most the tolerance at every vertex, or at most the vertex's rounding
-  /// floor where that is larger and at most 1/2 (see `Result::vertices_at_rounding_floor`).
-  /// For non-symmetric weights (mean value), whose equations generally have no exact solution, the stationarity of
-  /// their least-squares problem instead (`Result::max_stationarity`, see the manual).
-  IMBALANCE,
-  /// The paper's test: `Res < tolerance`. `Res` carries a factor 1/sqrt(n) against the root mean square of the
-  /// per-vertex residuals, so on large meshes it passes while vertices are still far from balanced; kept to
-  /// reproduce the paper's setting.
-  PAPER_RESIDUAL
-};
-
-/// \ingroup PkgSphericalParameterizationRef
-/// What the `progress_callback` named parameter receives: once after stage 1 (the two-disk initial guess; with the
-/// multilevel start, after the coarsest level's, and again after a finer level's own two-disk guess where the level
-/// below it failed), then after every iteration of stages 2 and 3 that gave a new iterate, on every level (and,
-/// inside an iteration that lasts, the last report again with its time updated, at most every half second).
-struct Progress {
-  const char* stage = "";          ///< "initial guess", "gauss-seidel", "global newton" or "local newton".
-  /// Iterations so far of the current phase (0 for the initial guess): the count starts again with each phase of
-  /// stage 3 (such as Newton's full steps, then the bijectivity-preserving ones) and on each level.
-  std::size_t iteration = 0;
-  double residual = -1.;           ///< The paper's `Res` now.
-  double max_imbalance = -1.;      ///< The largest imbalance `e_i` (see `Convergence_test`) at the end of stage 1; -1 in the per-iteration reports.
-  std::size_t non_positive_faces = 0; ///< Spherical triangles not positively oriented now.
-  double seconds = 0.;             ///< Since the call started.
-};
 
 /// \ingroup PkgSphericalParameterizationRef
 /// The default of the `max_gauss_seidel_sweeps` named parameter.

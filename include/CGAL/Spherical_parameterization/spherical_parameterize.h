@@ -1,3 +1,10 @@
+// Copyright (c) 2026 CGAL Spherical Parameterization contributors.
+// This file is part of CGAL Spherical Parameterization, a package in CGAL's style (www.cgal.org).
+//
+// SPDX-License-Identifier: GPL-3.0-or-later
+//
+// Author(s)     : CGAL Spherical Parameterization contributors
+
 // The package's entry point: a bijective map of a closed genus-0 triangle mesh onto the unit sphere.
 
 #ifndef CGAL_SPHERICAL_PARAMETERIZATION_SPHERICAL_PARAMETERIZE_H
@@ -14,6 +21,7 @@
 #include <CGAL/Spherical_parameterization/parameters.h>
 
 #include <CGAL/Named_function_parameters.h>
+#include <CGAL/Real_timer.h>
 #include <CGAL/boost/graph/named_params_helper.h>
 #include <CGAL/property_map.h>
 #include <CGAL/tags.h>
@@ -204,7 +212,8 @@ Result spherical_parameterize(const TriangleMesh& tm, VertexSphereMap vsm,
   using CGAL::parameters::get_parameter;
   using CGAL::parameters::is_default_parameter;
 
-  internal::Stopwatch clock;
+  CGAL::Real_timer clock;
+  clock.start();
   auto vim = CGAL::get_initialized_vertex_index_map(tm, np);
   internal::Mesh_arrays mesh = internal::read_mesh_arrays(tm, vim, np);
   const Input_check check = internal::check_mesh_arrays(mesh);
@@ -216,6 +225,7 @@ Result spherical_parameterize(const TriangleMesh& tm, VertexSphereMap vsm,
     result.number_of_faces = mesh.polygons.size();
     return result;
   }
+  std::vector<std::vector<int>>().swap(mesh.polygons);  // checked: from here on the triangles say it all
   internal::renumber_for_locality(mesh);
 
   constexpr bool has_user_weights = !is_default_parameter<NamedParameters, internal_np::halfedge_weight_map_t>::value;
@@ -264,7 +274,7 @@ Result spherical_parameterize(const TriangleMesh& tm, VertexSphereMap vsm,
       last->iteration = sweep;
       last->residual = residual;
       last->non_positive_faces = invalid;
-      last->seconds = clock.seconds();
+      last->seconds = clock.time();
       return report(*last);
     };
     // Inside an iteration that lasts (a Levenberg-Marquardt step with several factorizations, a Newton step on a
@@ -272,7 +282,7 @@ Result spherical_parameterize(const TriangleMesh& tm, VertexSphereMap vsm,
     // cancellation takes effect within about a second.
     auto last_poll = std::make_shared<double>(0.);
     options.iterations.keep_going = [report = options.report, clock, last, last_poll]() {
-      const double now = clock.seconds();
+      const double now = clock.time();
       if(*last->stage == '\0' || now - *last_poll < 0.5) return true;
       *last_poll = now;
       last->seconds = now;
@@ -280,7 +290,8 @@ Result spherical_parameterize(const TriangleMesh& tm, VertexSphereMap vsm,
     };
   }
 
-  internal::Sphere_system system = internal::make_connectivity(mesh);
+  // The triangles move into the system: the only copy from here on (the mesh keeps its points).
+  internal::Sphere_system system = internal::make_connectivity(std::move(mesh.triangles), mesh.points.size());
   std::string weight_message;
   std::function<double(std::size_t, int)> user_weight;
   std::vector<std::pair<std::uint64_t, double>> user_table;
@@ -313,7 +324,7 @@ Result spherical_parameterize(const TriangleMesh& tm, VertexSphereMap vsm,
     result.message = std::string(get_error_message(weight_status)) + ": " + weight_message;
     result.clamped_weights = system.clamped_weights;
     result.number_of_vertices = mesh.points.size();
-    result.number_of_faces = mesh.polygons.size();
+    result.number_of_faces = system.triangles.size();
     return result;
   }
   const bool admissible = choose_parameter(get_parameter(np, internal_np::admissible_weights), false);
@@ -343,7 +354,7 @@ Result spherical_parameterize(const TriangleMesh& tm, VertexSphereMap vsm,
       put(vsm, v, Point(p.x, p.y, p.z));
     }
   }
-  result.total_seconds = clock.seconds();
+  result.total_seconds = clock.time();
   return result;
 }
 

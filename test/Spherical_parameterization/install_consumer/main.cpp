@@ -1,3 +1,10 @@
+// Copyright (c) 2026 CGAL Spherical Parameterization contributors.
+// This file is part of CGAL Spherical Parameterization, a package in CGAL's style (www.cgal.org).
+//
+// SPDX-License-Identifier: GPL-3.0-or-later
+//
+// Author(s)     : CGAL Spherical Parameterization contributors
+
 // A user project: find_package() the installed package and map an icosahedron.
 #include <CGAL/Spherical_parameterization/spherical_parameterize.h>
 #include <CGAL/Surface_mesh.h>

@@ -1,3 +1,10 @@
+// Copyright (c) 2026 CGAL Spherical Parameterization contributors.
+// This file is part of CGAL Spherical Parameterization, a package in CGAL's style (www.cgal.org).
+//
+// SPDX-License-Identifier: GPL-3.0-or-later
+//
+// Author(s)     : CGAL Spherical Parameterization contributors
+
 // Brain-surface files: FreeSurfer's binary triangle surfaces (lh.white, lh.pial, lh.sphere, ...), read and written
 // here (the format needs no library), and GIfTI surfaces (.surf.gii) through Debian's GIFTI library when it is
 // available (CGAL_SPHERICAL_PARAMETERIZATION_USE_GIFTI). Both keep the vertex order and the triangles, so that

@@ -1,3 +1,10 @@
+// Copyright (c) 2026 CGAL Spherical Parameterization contributors.
+// This file is part of CGAL Spherical Parameterization, a package in CGAL's style (www.cgal.org).
+//
+// SPDX-License-Identifier: GPL-3.0-or-later
+//
+// Author(s)     : CGAL Spherical Parameterization contributors
+
 // Reading a mesh file as a polygon soup, with a precise verdict when the file is not a mesh.
 //
 // OFF (also gzip-compressed, e.g. `mesh.off.gz`) is read by a parser of its own: it says what is wrong (empty,

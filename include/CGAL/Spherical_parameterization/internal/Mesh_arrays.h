@@ -1,3 +1,10 @@
+// Copyright (c) 2026 CGAL Spherical Parameterization contributors.
+// This file is part of CGAL Spherical Parameterization, a package in CGAL's style (www.cgal.org).
+//
+// SPDX-License-Identifier: GPL-3.0-or-later
+//
+// Author(s)     : CGAL Spherical Parameterization contributors
+
 // The input mesh read once into flat arrays: every later stage works on these, never on the FaceGraph.
 // Faces keep the order of faces(tm) and each face starts at its smallest vertex index (orientation kept),
 // so that Surface_mesh, Polyhedron_3 or any FaceGraph with the same vertex and face order give the same arrays
@@ -25,8 +32,9 @@ namespace internal {
 
 struct Mesh_arrays {
   std::vector<Vector3> points;                 // indexed by the vertex index map
-  std::vector<std::vector<int>> polygons;      // as read (any degree), one per face
-  std::vector<std::array<int, 3>> triangles;   // filled when every polygon is a triangle
+  std::vector<std::vector<int>> polygons;      // as read (any degree), one per face: what the input checks read
+  std::vector<std::array<int, 3>> triangles;   // filled when every polygon is a triangle (spherical_parameterize()
+                                               // moves them into its Sphere_system: they are stored once)
   std::vector<int> input_index;                // after renumber_for_locality(): the input's index of each vertex
 };
 
@@ -73,6 +81,7 @@ inline std::uint64_t spread_bits_by_three(std::uint64_t v)
 // later stage (disk systems and AMG, sphere iterations, certificate) walks these arrays; in the input's order they
 // can be far apart (subdivided or shuffled files), which costs time on large meshes (the manual's Performance
 // section has the figures). The keys are integers, the order is deterministic. `input_index` keeps the way back.
+// `polygons`, in the input's numbering and read by nothing after the input checks, are released, not renumbered.
 //
 // Only meshes of `minimum_vertices` or more are renumbered: below, the arrays fit in the caches anyway, and a new
 // order only changes the iterates (METIS' separator, the Gauss-Seidel order), and with them the outcome of the
@@ -114,8 +123,7 @@ inline void renumber_for_locality(Mesh_arrays& mesh, std::size_t minimum_vertice
     t = canonical_triangle(rank[static_cast<std::size_t>(t[0])], rank[static_cast<std::size_t>(t[1])], rank[static_cast<std::size_t>(t[2])]);
   std::stable_sort(mesh.triangles.begin(), mesh.triangles.end(),
                    [](const std::array<int, 3>& a, const std::array<int, 3>& b) { return a[0] < b[0]; });
-  for(std::size_t f = 0; f < mesh.triangles.size(); ++f)
-    mesh.polygons[f].assign(mesh.triangles[f].begin(), mesh.triangles[f].end());
+  std::vector<std::vector<int>>().swap(mesh.polygons);
   mesh.input_index = std::move(order);
 }
 

@@ -1,3 +1,10 @@
+// Copyright (c) 2026 CGAL Spherical Parameterization contributors.
+// This file is part of CGAL Spherical Parameterization, a package in CGAL's style (www.cgal.org).
+//
+// SPDX-License-Identifier: GPL-3.0-or-later
+//
+// Author(s)     : CGAL Spherical Parameterization contributors
+
 // The pipeline behind spherical_parameterize(), as one class whose methods are its stages: the start (the
 // multilevel start, or the paper's stage 1 from two disks), stages 2 and 3, then the certificate and the figures of
 // the Result. spherical_parameterize.h is the front end (named parameters in, property map out).
@@ -6,19 +13,20 @@
 #define CGAL_SPHERICAL_PARAMETERIZATION_INTERNAL_SPHERE_MAPPER_H
 
 #include <CGAL/Spherical_parameterization/Error_code.h>
+#include <CGAL/Spherical_parameterization/Progress.h>
 #include <CGAL/Spherical_parameterization/Result.h>
+#include <CGAL/Spherical_parameterization/enum.h>
 #include <CGAL/Spherical_parameterization/independent_copy.h>
 #include <CGAL/Spherical_parameterization/internal/Mesh_arrays.h>
 #include <CGAL/Spherical_parameterization/internal/Sphere_system.h>
+#include <CGAL/Spherical_parameterization/internal/certificate.h>
 #include <CGAL/Spherical_parameterization/internal/disk_embedding.h>
-#include <CGAL/Spherical_parameterization/internal/global_newton.h>
 #include <CGAL/Spherical_parameterization/internal/inscribability.h>
 #include <CGAL/Spherical_parameterization/internal/iteration_driver.h>
 #include <CGAL/Spherical_parameterization/internal/mesh_coarsening.h>
 #include <CGAL/Spherical_parameterization/internal/sphere_iterations.h>
-#include <CGAL/Spherical_parameterization/internal/sphere_orientation.h>
+#include <CGAL/Spherical_parameterization/internal/stage3/global_newton.h>
 #include <CGAL/Spherical_parameterization/internal/two_disk_partition.h>
-#include <CGAL/Spherical_parameterization/parameters.h>
 
 #include <CGAL/Eigen_solver_traits.h>
 #include <CGAL/Eigen_sparse_matrix.h>
@@ -63,7 +71,7 @@ struct Pipeline_options {
   // Method section has what that cost).
   bool coarse_level = false;
   Iteration_options iterations;   // its max_seconds counts from `call_clock`'s start
-  Stopwatch call_clock;           // started when the user's call began (input checks and stage 1 count too)
+  CGAL::Real_timer call_clock;    // started when the user's call began (input checks and stage 1 count too)
   // Stage-level progress (the user's callback and the verbose printing); false cancels.
   std::function<bool(const Progress&)> report;
 };
@@ -112,7 +120,8 @@ public:
   Result map(std::vector<Vector3>& x)
   {
     result_ = Result();
-    total_ = Stopwatch();
+    total_ = CGAL::Real_timer();
+    total_.start();
     result_.number_of_vertices = system_.number_of_vertices;
     result_.number_of_faces = system_.triangles.size();
     iteration_options_ = options_.iterations;
@@ -120,7 +129,7 @@ public:
       // Stage 1 is everything before this mesh's smoothing and Newton steps (the coarser levels, solved, and the map
       // carried back); stage 2 the smoothing.
       result_.newton.seconds = multilevel_newton_seconds_ - result_.gauss_seidel.seconds;
-      result_.initial_guess.seconds = total_.seconds() - multilevel_newton_seconds_;
+      result_.initial_guess.seconds = total_.time() - multilevel_newton_seconds_;
       result_.newton.iterations = newton_.sweeps;
       result_.newton.linear_iterations = newton_.linear_iterations;
       result_.newton.residual = newton_.residual;
@@ -130,7 +139,7 @@ public:
       iterate(x);
     }
     certify_and_report(x);
-    result_.total_seconds = total_.seconds();
+    result_.total_seconds = total_.time();
     return result_;
   }
 
@@ -154,13 +163,15 @@ private:
 
   bool multilevel_start(std::vector<Vector3>& x)
   {
-    Stopwatch clock;
+    CGAL::Real_timer clock;
+    clock.start();
     const std::size_t n = system_.number_of_vertices;
-    Coarsening coarsening = coarsen_mesh(mesh_, static_cast<std::size_t>(options_.iterations.tuning.multilevel_coarsening_ratio * static_cast<double>(n)));
-    Sphere_system coarse_system = make_connectivity(coarsening.coarse);
+    Coarsening coarsening = coarsen_mesh(mesh_.points, system_.triangles,
+                                         static_cast<std::size_t>(options_.iterations.tuning.multilevel_coarsening_ratio * static_cast<double>(n)));
+    Sphere_system coarse_system = make_connectivity(std::move(coarsening.coarse.triangles), coarsening.coarse.points.size());
     std::string message;
     if(assign_weights(coarse_system, coarsening.coarse, Weighting::UNIFORM, {}, message) != Error_code::OK) return false;
-    const double coarsening_seconds = clock.seconds();
+    const double coarsening_seconds = clock.time();
     std::vector<Vector3> coarse_x;
     Pipeline_options coarse_options = options_;
     coarse_options.coarse_level = true;
@@ -177,27 +188,28 @@ private:
                                     << get_error_message(coarse.status) << "; the two-disk guess on " << n << " vertices follows\n";
       return false;
     }
-    clock = Stopwatch();
+    clock.reset();
     const std::size_t folded = prolong(coarsening, coarse_x, x);
     const std::size_t rounds = coarsening.rounds;
     coarsening = Coarsening();
     Iteration_options level_options = options_.iterations;
     if(level_options.max_seconds >= 0.)
-      level_options.max_seconds = std::max(0., level_options.max_seconds - options_.call_clock.seconds());
+      level_options.max_seconds = std::max(0., level_options.max_seconds - options_.call_clock.time());
     Sphere_state state(system_, x);
     result_.initial_flipped_faces = state.invalid_faces();
-    Stopwatch iterations_clock;
+    CGAL::Real_timer iterations_clock;
+    iterations_clock.start();
     Iteration_options smoothing = level_options;
     smoothing.max_gauss_seidel_sweeps = options_.iterations.tuning.multilevel_smoothing_sweeps;
     const Iteration_report smoothed = projected_gauss_seidel(state, smoothing, iterations_clock);
     result_.gauss_seidel.iterations = smoothed.sweeps;
     result_.gauss_seidel.residual = smoothed.residual;
-    result_.gauss_seidel.seconds = iterations_clock.seconds();
+    result_.gauss_seidel.seconds = iterations_clock.time();
     result_.initial_guess.residual = smoothed.residual;
     // The map carried back is close to the solution: the boost equations are solved as equations (Boost_aim).
     newton_ = full_newton_steps(state, level_options, iterations_clock, Boost_aim::ROOT);
     cancelled_ = cancelled_ || newton_.cancelled;
-    multilevel_newton_seconds_ = iterations_clock.seconds();
+    multilevel_newton_seconds_ = iterations_clock.time();
     result_.levels = coarse.levels;
     if(result_.levels.empty()) {
       Level_statistics coarsest;
@@ -211,13 +223,13 @@ private:
     level.vertices = n;
     level.newton_steps = newton_.sweeps;
     level.linear_iterations = newton_.linear_iterations;
-    level.seconds = coarsening_seconds + clock.seconds();
+    level.seconds = coarsening_seconds + clock.time();
     result_.levels.push_back(level);
     if(options_.verbose)
       std::cerr << "multilevel: " << n << " vertices from " << coarse.number_of_vertices << " (" << rounds
                 << " rounds of collapses, " << coarsening_seconds << " s; " << folded << " vertices inserted folded): "
                 << newton_.sweeps << " Newton steps, " << newton_.linear_iterations << " MINRES iterations, max imbalance "
-                << summarize_imbalance(system_, x, options_.iterations.tolerance).max << ", " << clock.seconds() << " s\n";
+                << summarize_imbalance(system_, x, options_.iterations.tolerance).max << ", " << clock.time() << " s\n";
     return newton_.converged || newton_.cancelled || newton_.out_of_time;
   }
 
@@ -225,7 +237,8 @@ private:
   // iterations that follow from it; false when no initial guess could be made (result says why).
   bool two_disk_start(std::vector<Vector3>& x)
   {
-    Stopwatch stage;
+    CGAL::Real_timer stage;
+    stage.start();
     const Two_disk_partition partition = split_into_two_disks(system_, options_.metis_seed, options_.metis_options);
     if(!partition.valid) {
       result_.status = Error_code::PARTITION_FAILED;
@@ -266,7 +279,7 @@ private:
     result_.initial_flipped_faces = start.flipped_faces;
     result_.initial_guess.residual = compute_residuals(system_, x).paper;
     const double initial_imbalance = summarize_imbalance(system_, x, options_.iterations.tolerance).max;
-    result_.initial_guess.seconds = stage.seconds();
+    result_.initial_guess.seconds = stage.time();
     if(options_.verbose)
       std::cerr << "stage 1: separator " << result_.separator_size << " vertices, loop " << result_.cut_loop_length
                 << " vertices, Res " << result_.initial_guess.residual << ", non-positive faces " << start.flipped_faces
@@ -277,7 +290,7 @@ private:
       progress.residual = result_.initial_guess.residual;
       progress.max_imbalance = initial_imbalance;
       progress.non_positive_faces = start.flipped_faces;
-      progress.seconds = total_.seconds();
+      progress.seconds = total_.time();
       cancelled_ = !options_.report(progress);
     }
 
@@ -302,21 +315,24 @@ private:
   // Stages 2 and 3 from the initial guess in x.
   void iterate(std::vector<Vector3>& x)
   {
-    Stopwatch stage;
+    CGAL::Real_timer stage;
+    stage.start();
     // Stages 2 and 3, with what is left of the time budget: it bounds the whole call, and stage 1 (which every
     // returned map needs) runs to its end even when it alone takes longer.
     if(iteration_options_.max_seconds >= 0.)
-      iteration_options_.max_seconds = std::max(0., iteration_options_.max_seconds - options_.call_clock.seconds());
+      iteration_options_.max_seconds = std::max(0., iteration_options_.max_seconds - options_.call_clock.time());
     const std::vector<Vector3> initial_guess = x;
     Sphere_state state(system_, x);
-    Stopwatch iterations_clock;
+    CGAL::Real_timer iterations_clock;
+    iterations_clock.start();
     // The default solver first tries Newton's full steps (through folds, keeping degree 1) from the initial guess:
     // where they converge (most meshes, in 4 to 20 steps) stage 2 is not needed. Otherwise the paper's order
     // follows from the initial guess again: stage 2, then stage 3 (which tries the same steps from stage 2's result
     // before the bijectivity-preserving ones). Non-symmetric weights (imbalance test): the least-squares iterations
     // first, which need no smoothing either (bear, mean value: 2.6 s from the initial guess, 25 s after stage 2).
     Iteration_report direct_newton;
-    Stopwatch direct_clock;
+    CGAL::Real_timer direct_clock;
+    direct_clock.start();
     const bool try_direct_newton = !cancelled_ && !no_balanced_solution_ &&
                                    options_.nonlinear_solver == Nonlinear_solver::GLOBAL_NEWTON && iteration_options_.max_newton_sweeps > 0 &&
                                    (system_.symmetric || iteration_options_.convergence_test == Convergence_test::IMBALANCE);
@@ -332,22 +348,22 @@ private:
       if(iteration_options_.max_newton_sweeps > direct_newton.sweeps) iteration_options_.max_newton_sweeps -= direct_newton.sweeps;
       else iteration_options_.max_newton_sweeps = 0;
     }
-    const double direct_seconds = direct_clock.seconds();
+    const double direct_seconds = direct_clock.time();
     const bool direct_done = direct_newton.converged || direct_newton.out_of_time;
 
-    stage = Stopwatch();
+    stage.reset();
     Iteration_report gauss_seidel;
     if(!cancelled_ && !direct_done) gauss_seidel = projected_gauss_seidel(state, iteration_options_, iterations_clock);
     else gauss_seidel.residual = direct_newton.converged ? direct_newton.residual : result_.initial_guess.residual;
     cancelled_ = cancelled_ || gauss_seidel.cancelled;
     result_.gauss_seidel.iterations = gauss_seidel.sweeps;
     result_.gauss_seidel.residual = gauss_seidel.residual;
-    result_.gauss_seidel.seconds = stage.seconds();
+    result_.gauss_seidel.seconds = stage.time();
     if(options_.verbose)
       std::cerr << "stage 2: " << gauss_seidel.sweeps << " sweeps, Res " << gauss_seidel.residual << ", non-positive faces "
                 << state.invalid_faces() << ", " << result_.gauss_seidel.seconds << " s\n";
 
-    stage = Stopwatch();
+    stage.reset();
     if(!direct_done && !gauss_seidel.converged && !gauss_seidel.out_of_time && !cancelled_ && iteration_options_.max_newton_sweeps > 0)
       newton_ = options_.nonlinear_solver == Nonlinear_solver::LOCAL_NEWTON
                    ? local_newton(state, iteration_options_, iterations_clock)
@@ -357,7 +373,7 @@ private:
     result_.newton.iterations = newton_.sweeps + direct_newton.sweeps;
     result_.newton.linear_iterations = newton_.linear_iterations + direct_newton.linear_iterations;
     result_.newton.residual = direct_done ? direct_newton.residual : newton_.residual;
-    result_.newton.seconds = stage.seconds() + direct_seconds;
+    result_.newton.seconds = stage.time() + direct_seconds;
     result_.rejected_moves = gauss_seidel.rejected_moves + newton_.rejected_moves;
     result_.continuation_parameter = newton_.continuation_parameter;
     if(options_.verbose)
@@ -434,7 +450,7 @@ private:
   const Pipeline_options& options_;
   const SolverTraits& solver_;
   Result result_;
-  Stopwatch total_;
+  CGAL::Real_timer total_;
   Iteration_options iteration_options_;   // options_.iterations as this mesh's stages run them
   bool cancelled_ = false;
   bool no_balanced_solution_ = false;     // proven: no bijective balanced map exists (inscribability_)

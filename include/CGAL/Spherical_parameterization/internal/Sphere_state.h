@@ -1,3 +1,10 @@
+// Copyright (c) 2026 CGAL Spherical Parameterization contributors.
+// This file is part of CGAL Spherical Parameterization, a package in CGAL's style (www.cgal.org).
+//
+// SPDX-License-Identifier: GPL-3.0-or-later
+//
+// Author(s)     : CGAL Spherical Parameterization contributors
+
 // The iterate of stages 2 and 3, written by one owner: the positions on the sphere, the neighbour sums
 // s_i = sum_j w_ij x_j cached for the paper's sweeps, and which faces are positively oriented (exact predicate).
 
@@ -5,7 +12,9 @@
 #define CGAL_SPHERICAL_PARAMETERIZATION_INTERNAL_SPHERE_STATE_H
 
 #include <CGAL/Spherical_parameterization/internal/Sphere_system.h>
-#include <CGAL/Spherical_parameterization/internal/sphere_orientation.h>
+#include <CGAL/Spherical_parameterization/internal/certificate.h>
+
+#include <CGAL/assertions.h>
 
 #include <algorithm>
 #include <cmath>
@@ -21,6 +30,7 @@ class Sphere_state {
 public:
   Sphere_state(const Sphere_system& system, std::vector<Vector3>& x) : system_(system), x_(x)
   {
+    CGAL_precondition(x.size() == system.number_of_vertices);
     face_positive_.assign(system.triangles.size(), 0);
     for(std::size_t f = 0; f < system.triangles.size(); ++f) {
       const auto& t = system.triangles[f];
@@ -54,6 +64,7 @@ public:
   // `positive_faces_kept`: keeps_positive_faces(y) held, so only the faces that were not positive are tested again.
   void assign(const std::vector<Vector3>& y, bool positive_faces_kept = false)
   {
+    CGAL_precondition(y.size() == system_.number_of_vertices);
     ++revision_;
     x_ = y;
     invalid_faces_ = 0;
@@ -107,6 +118,7 @@ private:
   // (leaving ring_positive_ incomplete) as soon as a positive face would turn non-positive.
   bool ring_orientation(std::size_t i, const Vector3& y, bool stop_at_fold)
   {
+    ring_vertex_ = no_vertex;
     const std::size_t begin = system_.offsets[i], end = system_.offsets[i + 1];
     ring_positive_.resize(end - begin);
     for(std::size_t k = begin; k < end; ++k) {
@@ -116,12 +128,16 @@ private:
       ring_positive_[k - begin] = positive;
       if(stop_at_fold && !positive && face_positive_[static_cast<std::size_t>(system_.ring_faces[k])]) return false;
     }
+    ring_vertex_ = i;
     return true;
   }
 
   // Moves i to y; the orientations of its faces are those just computed by ring_orientation(i, y, ...).
   void commit(std::size_t i, const Vector3& y)
   {
+    // The order of the calls: ring_orientation(i, y, ...) ran to its end just before, for this vertex.
+    CGAL_precondition(ring_vertex_ == i);
+    ring_vertex_ = no_vertex;
     ++revision_;
     const Vector3 delta = y - x_[i];
     x_[i] = y;
@@ -140,6 +156,8 @@ private:
   std::vector<Vector3> s_;
   std::vector<char> face_positive_;
   std::vector<char> ring_positive_;   // scratch of ring_orientation()
+  static constexpr std::size_t no_vertex = std::size_t(-1);
+  std::size_t ring_vertex_ = no_vertex;  // the vertex whose ring ring_positive_ holds completely, if any
   std::size_t invalid_faces_ = 0;
   std::size_t revision_ = 0;
 };

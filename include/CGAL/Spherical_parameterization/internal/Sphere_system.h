@@ -1,3 +1,10 @@
+// Copyright (c) 2026 CGAL Spherical Parameterization contributors.
+// This file is part of CGAL Spherical Parameterization, a package in CGAL's style (www.cgal.org).
+//
+// SPDX-License-Identifier: GPL-3.0-or-later
+//
+// Author(s)     : CGAL Spherical Parameterization contributors
+
 // The balance equations alpha_i x_i = sum_j w_ij x_j in compact form: for every vertex its neighbours in
 // counter-clockwise order (CSR), the weights normalized to sum to one per vertex, and for every entry (i, j)
 // the position of the entry (j, i), so that moving x_i updates the sums of its neighbours in O(degree).
@@ -6,9 +13,12 @@
 #define CGAL_SPHERICAL_PARAMETERIZATION_INTERNAL_SPHERE_SYSTEM_H
 
 #include <CGAL/Spherical_parameterization/Error_code.h>
+#include <CGAL/Spherical_parameterization/enum.h>
 #include <CGAL/Spherical_parameterization/internal/Mesh_arrays.h>
 #include <CGAL/Spherical_parameterization/internal/Vector3.h>
-#include <CGAL/Spherical_parameterization/parameters.h>
+
+#include <CGAL/assertions.h>
+#include <CGAL/number_type_config.h>
 
 #include <algorithm>
 #include <array>
@@ -40,23 +50,27 @@ struct Sphere_system {
   std::size_t degree(std::size_t i) const { return offsets[i + 1] - offsets[i]; }
 };
 
-// Builds the counter-clockwise rings. Requires a closed, oriented, vertex-manifold triangle mesh.
-inline Sphere_system make_connectivity(const Mesh_arrays& mesh)
+// Builds the counter-clockwise rings of the triangles on `n` vertices, and keeps the triangles: the system is where
+// they are stored from here on (the pipeline moves them in). Requires a closed, oriented, vertex-manifold triangle
+// mesh (one that passed check_mesh_arrays(): the callers check the input first, so a violation here is a bug, not a
+// user error).
+inline Sphere_system make_connectivity(std::vector<std::array<int, 3>> triangles, std::size_t n)
 {
+  CGAL_precondition(!triangles.empty());
   Sphere_system system;
-  const std::size_t n = mesh.points.size();
   system.number_of_vertices = n;
-  system.triangles = mesh.triangles;
+  system.triangles = std::move(triangles);
+  const std::vector<std::array<int, 3>>& faces = system.triangles;
   system.offsets.assign(n + 1, 0);
-  for(const auto& t : mesh.triangles) for(int i : t) ++system.offsets[static_cast<std::size_t>(i) + 1];
+  for(const auto& t : faces) for(int i : t) ++system.offsets[static_cast<std::size_t>(i) + 1];
   for(std::size_t i = 0; i < n; ++i) system.offsets[i + 1] += system.offsets[i];
 
   // For vertex v in face f = (v, b, c), c follows b counter-clockwise around v.
   std::vector<std::array<int, 3>> successor(system.offsets[n]);
   {
     std::vector<std::size_t> fill(system.offsets.begin(), system.offsets.end() - 1);
-    for(std::size_t f = 0; f < mesh.triangles.size(); ++f) {
-      const auto& t = mesh.triangles[f];
+    for(std::size_t f = 0; f < faces.size(); ++f) {
+      const auto& t = faces[f];
       for(int k = 0; k < 3; ++k)
         successor[fill[static_cast<std::size_t>(t[k])]++] = {t[(k + 1) % 3], t[(k + 2) % 3], static_cast<int>(f)};
     }
@@ -69,11 +83,16 @@ inline Sphere_system make_connectivity(const Mesh_arrays& mesh)
     std::sort(first, last);
     auto entry = first;
     for(std::size_t k = system.offsets[v]; k < system.offsets[v + 1]; ++k) {
+      // Closed and vertex-manifold: the face after each face around v exists.
+      CGAL_assertion(entry != last);
       system.neighbors[k] = (*entry)[0];
       system.ring_faces[k] = (*entry)[2];
       const std::array<int, 3> key{(*entry)[1], -1, -1};
       entry = std::lower_bound(first, last, key);
+      CGAL_assertion(entry != last && (*entry)[0] == key[0]);
     }
+    // One fan: the walk came back to the face it started from.
+    CGAL_assertion(entry == first);
   }
 
   system.reverse.resize(system.neighbors.size());
@@ -82,8 +101,15 @@ inline Sphere_system make_connectivity(const Mesh_arrays& mesh)
       const std::size_t j = static_cast<std::size_t>(system.neighbors[k]);
       for(std::size_t m = system.offsets[j]; m < system.offsets[j + 1]; ++m)
         if(system.neighbors[m] == static_cast<int>(i)) { system.reverse[k] = m; break; }
+      CGAL_assertion(system.neighbors[system.reverse[k]] == static_cast<int>(i));  // closed: (j, i) exists
     }
   return system;
+}
+
+// The same with a copy of the mesh's triangles (the mesh keeps its own).
+inline Sphere_system make_connectivity(const Mesh_arrays& mesh)
+{
+  return make_connectivity(mesh.triangles, mesh.points.size());
 }
 
 // Degenerate corners (zero-area faces, coincident vertices, needles) make cotangent and mean-value weights
@@ -98,7 +124,7 @@ inline int out_of_bounds(double sine_length, double cosine_length)
 {
   const double angle = std::atan2(sine_length, cosine_length);
   if(!(angle >= minimum_corner_angle)) return -1;
-  return angle > 3.14159265358979323846 - minimum_corner_angle ? 1 : 0;
+  return angle > CGAL_PI - minimum_corner_angle ? 1 : 0;
 }
 
 // Cotangent of the angle between a and b.

@@ -1,3 +1,10 @@
+// Copyright (c) 2026 CGAL Spherical Parameterization contributors.
+// This file is part of CGAL Spherical Parameterization, a package in CGAL's style (www.cgal.org).
+//
+// SPDX-License-Identifier: GPL-3.0-or-later
+//
+// Author(s)     : CGAL Spherical Parameterization contributors
+
 // A small value type for the numerics on flat arrays (positions on the sphere, sums of neighbours).
 
 #ifndef CGAL_SPHERICAL_PARAMETERIZATION_INTERNAL_VECTOR3_H

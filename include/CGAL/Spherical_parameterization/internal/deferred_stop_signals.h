@@ -1,3 +1,10 @@
+// Copyright (c) 2026 CGAL Spherical Parameterization contributors.
+// This file is part of CGAL Spherical Parameterization, a package in CGAL's style (www.cgal.org).
+//
+// SPDX-License-Identifier: GPL-3.0-or-later
+//
+// Author(s)     : CGAL Spherical Parameterization contributors
+
 // METIS (through its GKlib) installs its own handler for SIGTERM while one of its functions runs and turns the
 // signal into an error return, then puts the previous handler back: a job scheduler's SIGTERM (Slurm, systemd,
 // `timeout`) that arrives during a METIS call is lost, and the process runs on, for minutes where METIS is called at

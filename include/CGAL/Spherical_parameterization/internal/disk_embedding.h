@@ -1,3 +1,10 @@
+// Copyright (c) 2026 CGAL Spherical Parameterization contributors.
+// This file is part of CGAL Spherical Parameterization, a package in CGAL's style (www.cgal.org).
+//
+// SPDX-License-Identifier: GPL-3.0-or-later
+//
+// Author(s)     : CGAL Spherical Parameterization contributors
+
 // Stage 1b: embed each of the two disks in the unit disk with CGAL's Surface_mesh_parameterization
 // (Fixed_border_parameterizer_3 and its Tutte / mean-value / discrete-conformal strategies), the shared loop
 // at exactly the same points of the unit circle for both halves.
@@ -5,10 +12,10 @@
 #ifndef CGAL_SPHERICAL_PARAMETERIZATION_INTERNAL_DISK_EMBEDDING_H
 #define CGAL_SPHERICAL_PARAMETERIZATION_INTERNAL_DISK_EMBEDDING_H
 
+#include <CGAL/Spherical_parameterization/enum.h>
 #include <CGAL/Spherical_parameterization/internal/Mesh_arrays.h>
 #include <CGAL/Spherical_parameterization/internal/Sphere_system.h>
 #include <CGAL/Spherical_parameterization/internal/two_disk_partition.h>
-#include <CGAL/Spherical_parameterization/parameters.h>
 
 #include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
 #include <CGAL/Surface_mesh.h>
@@ -17,6 +24,7 @@
 #include <CGAL/Surface_mesh_parameterization/Error_code.h>
 #include <CGAL/Surface_mesh_parameterization/Fixed_border_parameterizer_3.h>
 #include <CGAL/Surface_mesh_parameterization/Mean_value_coordinates_parameterizer_3.h>
+#include <CGAL/number_type_config.h>
 
 #include <cmath>
 #include <cstddef>
@@ -125,7 +133,7 @@ bool embed_one_disk(const Mesh_arrays& mesh, const Sphere_system& system, const 
 
   // The loop at evenly spaced points of the unit circle, counter-clockwise around disk A (as the paper does).
   std::vector<Point_2> border(global_index.size(), Point_2(0, 0));
-  const double two_pi = 2. * 3.14159265358979323846;
+  const double two_pi = 2. * CGAL_PI;
   const std::size_t m = partition.loop.size();
   for(std::size_t k = 0; k < m; ++k) {
     const double angle = two_pi * static_cast<double>(k) / static_cast<double>(m);

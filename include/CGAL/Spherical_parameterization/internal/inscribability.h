@@ -1,3 +1,10 @@
+// Copyright (c) 2026 CGAL Spherical Parameterization contributors.
+// This file is part of CGAL Spherical Parameterization, a package in CGAL's style (www.cgal.org).
+//
+// SPDX-License-Identifier: GPL-3.0-or-later
+//
+// Author(s)     : CGAL Spherical Parameterization contributors
+
 // A combinatorial proof that a triangulated sphere is not inscribable, when a simple one exists.
 //
 // The paper (Section 2) notes that for a non-inscribable connectivity the balance equations have no bijective

@@ -1,3 +1,10 @@
+// Copyright (c) 2026 CGAL Spherical Parameterization contributors.
+// This file is part of CGAL Spherical Parameterization, a package in CGAL's style (www.cgal.org).
+//
+// SPDX-License-Identifier: GPL-3.0-or-later
+//
+// Author(s)     : CGAL Spherical Parameterization contributors
+
 // The loop that every iterative stage shares (stage 2's Gauss-Seidel, the paper's local Newton, the Moebius-aware
 // and the cautious Newton): Iteration_driver owns the caps, the time budget, progress and cancellation, stagnation,
 // the best iterate and the counters; a stage supplies only its iteration. It also measures each iterate once (Res
@@ -11,7 +18,8 @@
 #include <CGAL/Spherical_parameterization/internal/Sphere_system.h>
 #include <CGAL/Spherical_parameterization/internal/solver_tuning.h>
 
-#include <chrono>
+#include <CGAL/Real_timer.h>
+
 #include <cstddef>
 #include <functional>
 #include <vector>
@@ -48,18 +56,10 @@ struct Iteration_report {
   double continuation_parameter = -1.;  // how far the continuation from Tutte's weights got (-1: not tried)
 };
 
-class Stopwatch {
-public:
-  Stopwatch() : start_(std::chrono::steady_clock::now()) {}
-  double seconds() const { return std::chrono::duration<double>(std::chrono::steady_clock::now() - start_).count(); }
-private:
-  std::chrono::steady_clock::time_point start_;
-};
-
 // The time budget, checked between iterations and, inside the long ones, between their parts.
-inline bool past_time_budget(const Iteration_options& options, const Stopwatch& clock)
+inline bool past_time_budget(const Iteration_options& options, const CGAL::Real_timer& clock)
 {
-  return options.max_seconds >= 0. && clock.seconds() > options.max_seconds;
+  return options.max_seconds >= 0. && clock.time() > options.max_seconds;
 }
 
 // The stopping test of every solver: no non-positive face, and every vertex balanced in its own scale (or the
@@ -95,7 +95,7 @@ double backtracking_line_search(double min_step, Admissible&& admissible, Accept
 class Iteration_driver {
 public:
   // `stage`: the name in progress reports; `max_iterations`: the cap.
-  Iteration_driver(Sphere_state& state, const Iteration_options& options, const Stopwatch& clock, const char* stage,
+  Iteration_driver(Sphere_state& state, const Iteration_options& options, const CGAL::Real_timer& clock, const char* stage,
                    std::size_t max_iterations)
     : state_(state), options_(options), clock_(clock), stage_(stage), max_iterations_(max_iterations) {}
 
@@ -200,7 +200,7 @@ public:
 private:
   Sphere_state& state_;
   const Iteration_options& options_;
-  const Stopwatch& clock_;
+  const CGAL::Real_timer& clock_;
   const char* stage_;
   std::size_t max_iterations_;
   Iteration_report report_;

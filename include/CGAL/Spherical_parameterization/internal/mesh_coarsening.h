@@ -1,3 +1,10 @@
+// Copyright (c) 2026 CGAL Spherical Parameterization contributors.
+// This file is part of CGAL Spherical Parameterization, a package in CGAL's style (www.cgal.org).
+//
+// SPDX-License-Identifier: GPL-3.0-or-later
+//
+// Author(s)     : CGAL Spherical Parameterization contributors
+
 // The multilevel start (beyond the paper): a coarser genus-0 mesh by half-edge collapses, and the way back.
 //
 // Each round removes an independent set of vertices (no two removed vertices adjacent), each by collapsing it into
@@ -12,6 +19,7 @@
 #include <CGAL/Spherical_parameterization/internal/Mesh_arrays.h>
 #include <CGAL/Spherical_parameterization/internal/Vector3.h>
 
+#include <CGAL/assertions.h>
 #include <CGAL/number_type_config.h>
 
 #include <algorithm>
@@ -31,6 +39,7 @@ constexpr std::size_t coarsening_max_degree = 12;
 
 struct Coarsening {
   Mesh_arrays coarse;                     // the kept vertices (compact indices, in the fine order) and triangles
+                                          // (no polygons: nothing checks the coarse mesh as input)
   std::vector<int> coarse_index;          // fine vertex -> its coarse index, -1 if removed
   std::vector<int> removed;               // fine indices, in the order of their removal
   std::vector<int> targets;               // the neighbour each removed vertex was collapsed into (fine index)
@@ -80,15 +89,18 @@ inline void erase_value(std::vector<int>& values, int value)
 
 } // namespace coarsening_detail
 
-// Collapses `mesh` (closed, oriented, manifold, genus 0) down to about `target_vertices` (never below 8).
-// Vertices are visited in index order, which follows the space-filling curve on large meshes.
-inline Coarsening coarsen_mesh(const Mesh_arrays& mesh, std::size_t target_vertices)
+// Collapses the mesh of `points` and `triangles` (closed, oriented, manifold, genus 0) down to about
+// `target_vertices` (never below 8). Vertices are visited in index order, which follows the space-filling curve on
+// large meshes.
+inline Coarsening coarsen_mesh(const std::vector<Vector3>& points, const std::vector<std::array<int, 3>>& triangles,
+                               std::size_t target_vertices)
 {
   using namespace coarsening_detail;
-  const std::size_t n = mesh.points.size();
+  const std::size_t n = points.size();
   target_vertices = std::max<std::size_t>(target_vertices, 8);
+  CGAL_precondition(2 * n == triangles.size() + 4);  // closed genus 0: F = 2 V - 4
   Coarsening result;
-  std::vector<std::array<int, 3>> faces = mesh.triangles;
+  std::vector<std::array<int, 3>> faces = triangles;
   std::vector<char> face_alive(faces.size(), 1), vertex_alive(n, 1), locked(n, 0);
   std::vector<std::vector<int>> incident(n);
   for(std::size_t f = 0; f < faces.size(); ++f)
@@ -129,7 +141,7 @@ inline Coarsening coarsen_mesh(const Mesh_arrays& mesh, std::size_t target_verti
           if(!link) break;
         }
         if(!link) continue;
-        const double edge = squared_length(mesh.points[v] - mesh.points[iu]);
+        const double edge = squared_length(points[v] - points[iu]);
         if(degree < best_degree || edge < best_length) {
           best = k;
           best_degree = degree;
@@ -167,7 +179,7 @@ inline Coarsening coarsen_mesh(const Mesh_arrays& mesh, std::size_t target_verti
   for(std::size_t i = 0; i < n; ++i)
     if(vertex_alive[i]) {
       result.coarse_index[i] = next++;
-      result.coarse.points.push_back(mesh.points[i]);
+      result.coarse.points.push_back(points[i]);
     }
   for(std::size_t f = 0; f < faces.size(); ++f) {
     if(!face_alive[f]) continue;
@@ -176,9 +188,15 @@ inline Coarsening coarsen_mesh(const Mesh_arrays& mesh, std::size_t target_verti
                                                          result.coarse_index[static_cast<std::size_t>(t[1])],
                                                          result.coarse_index[static_cast<std::size_t>(t[2])]));
   }
-  result.coarse.polygons.reserve(result.coarse.triangles.size());
-  for(const std::array<int, 3>& t : result.coarse.triangles) result.coarse.polygons.push_back({t[0], t[1], t[2]});
+  // The collapses kept the link condition: still a closed genus-0 mesh.
+  CGAL_postcondition(2 * result.coarse.points.size() == result.coarse.triangles.size() + 4);
   return result;
+}
+
+// The same for a mesh's arrays.
+inline Coarsening coarsen_mesh(const Mesh_arrays& mesh, std::size_t target_vertices)
+{
+  return coarsen_mesh(mesh.points, mesh.triangles, target_vertices);
 }
 
 // The fine map from the coarse one: kept vertices where the coarse map put them, removed ones inserted back in
@@ -191,6 +209,7 @@ inline Coarsening coarsen_mesh(const Mesh_arrays& mesh, std::size_t target_verti
 inline std::size_t prolong(const Coarsening& coarsening, const std::vector<Vector3>& coarse_x, std::vector<Vector3>& x)
 {
   const std::size_t n = coarsening.coarse_index.size();
+  CGAL_precondition(coarse_x.size() == coarsening.coarse.points.size());
   x.assign(n, Vector3());
   for(std::size_t i = 0; i < n; ++i)
     if(coarsening.coarse_index[i] >= 0) x[i] = coarse_x[static_cast<std::size_t>(coarsening.coarse_index[i])];

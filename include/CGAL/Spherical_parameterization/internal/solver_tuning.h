@@ -1,3 +1,10 @@
+// Copyright (c) 2026 CGAL Spherical Parameterization contributors.
+// This file is part of CGAL Spherical Parameterization, a package in CGAL's style (www.cgal.org).
+//
+// SPDX-License-Identifier: GPL-3.0-or-later
+//
+// Author(s)     : CGAL Spherical Parameterization contributors
+
 // The tuning constants of stages 2 and 3 in one place, each with the evidence it was chosen on. They are fields (not
 // constants) so that a test or an experiment can change one without editing the solvers; the package's calls always
 // use the defaults. "The 66 meshes" are CGAL's 48 closed genus-0 sample meshes and the 18 of ../shared/meshes.

@@ -1,3 +1,10 @@
+// Copyright (c) 2026 CGAL Spherical Parameterization contributors.
+// This file is part of CGAL Spherical Parameterization, a package in CGAL's style (www.cgal.org).
+//
+// SPDX-License-Identifier: GPL-3.0-or-later
+//
+// Author(s)     : CGAL Spherical Parameterization contributors
+
 // Stages 2 and 3 of the paper on the flat arrays of a Sphere_system:
 //  - projected Gauss-Seidel (Section 3.2), stopped as soon as the residual grows;
 //  - local Newton (Section 3.3): each vertex in turn, in a frame where it sits on the x-axis, takes a Newton step
@@ -23,7 +30,7 @@ namespace internal {
 
 // Paper, Section 3.2, with lambda = 1: x_i <- s_i / |s_i| in turn, while Res decreases. The last iterate whose
 // residual did not grow is kept.
-inline Iteration_report projected_gauss_seidel(Sphere_state& state, const Iteration_options& options, const Stopwatch& clock)
+inline Iteration_report projected_gauss_seidel(Sphere_state& state, const Iteration_options& options, const CGAL::Real_timer& clock)
 {
   Iteration_driver driver(state, options, clock, "gauss-seidel", options.max_gauss_seidel_sweeps);
   const Sphere_system& system = state.system();
@@ -124,7 +131,7 @@ inline bool local_newton_step(Sphere_state& state, std::size_t i, bool preserve)
 
 // The paper's stage 3: local Newton sweeps until the convergence test holds, no vertex moves, or 1000 sweeps gained
 // less than 1% in all; when it does not converge, the best iterate is returned.
-inline Iteration_report local_newton(Sphere_state& state, const Iteration_options& options, const Stopwatch& clock)
+inline Iteration_report local_newton(Sphere_state& state, const Iteration_options& options, const CGAL::Real_timer& clock)
 {
   Iteration_driver driver(state, options, clock, "local newton", options.max_newton_sweeps);
   driver.watch_stagnation(options.tuning.local_stagnation_window);

@@ -1,3 +1,10 @@
+// Copyright (c) 2026 CGAL Spherical Parameterization contributors.
+// This file is part of CGAL Spherical Parameterization, a package in CGAL's style (www.cgal.org).
+//
+// SPDX-License-Identifier: GPL-3.0-or-later
+//
+// Author(s)     : CGAL Spherical Parameterization contributors
+
 // Stage 1a: split a closed genus-0 mesh into two topological disks along a simple closed loop of edges.
 //
 // METIS gives a balanced vertex separator, but a separator is not a cycle: it can branch, have loose ends, and

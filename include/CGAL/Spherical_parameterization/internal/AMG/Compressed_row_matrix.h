@@ -1,3 +1,10 @@
+// Copyright (c) 2026 CGAL Spherical Parameterization contributors.
+// This file is part of CGAL Spherical Parameterization, a package in CGAL's style (www.cgal.org).
+//
+// SPDX-License-Identifier: GPL-3.0-or-later
+//
+// Author(s)     : CGAL Spherical Parameterization contributors
+
 // Compressed sparse row matrix and the few kernels the algebraic multigrid needs.
 // Flat arrays and 32-bit indices: the kernels are memory bound, so smaller is faster.
 

@@ -1,3 +1,10 @@
+// Copyright (c) 2026 CGAL Spherical Parameterization contributors.
+// This file is part of CGAL Spherical Parameterization, a package in CGAL's style (www.cgal.org).
+//
+// SPDX-License-Identifier: GPL-3.0-or-later
+//
+// Author(s)     : CGAL Spherical Parameterization contributors
+
 // Elimination of the rows that hold only a diagonal entry, such as the border rows of CGAL's
 // Fixed_border_parameterizer_3: their values are known and move to the right-hand side, so that the uniform and
 // cotangent systems of the interior become symmetric. Rows with a negative diagonal are negated, so that the

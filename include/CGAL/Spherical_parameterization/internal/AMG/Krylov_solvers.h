@@ -1,3 +1,10 @@
+// Copyright (c) 2026 CGAL Spherical Parameterization contributors.
+// This file is part of CGAL Spherical Parameterization, a package in CGAL's style (www.cgal.org).
+//
+// SPDX-License-Identifier: GPL-3.0-or-later
+//
+// Author(s)     : CGAL Spherical Parameterization contributors
+
 // Preconditioned Krylov methods over raw arrays: conjugate gradient (symmetric), BiCGStab and restarted GMRES
 // (non-symmetric, right-preconditioned). All stop on the unpreconditioned residual ||b - A x||, recomputed
 // explicitly before convergence is reported. Work vectors live in Krylov_workspace and are reused between solves.

@@ -1,3 +1,10 @@
+// Copyright (c) 2026 CGAL Spherical Parameterization contributors.
+// This file is part of CGAL Spherical Parameterization, a package in CGAL's style (www.cgal.org).
+//
+// SPDX-License-Identifier: GPL-3.0-or-later
+//
+// Author(s)     : CGAL Spherical Parameterization contributors
+
 // Classical (Ruge-Stueben) algebraic multigrid: strength of connection, C/F splitting,
 // classical interpolation, Galerkin coarse operators, and the V-cycle with Gauss-Seidel smoothing.
 // References: J. W. Ruge, K. Stueben, "Algebraic multigrid", in Multigrid Methods, SIAM 1987;
@@ -7,6 +14,8 @@
 #define CGAL_SPHERICAL_PARAMETERIZATION_INTERNAL_AMG_RUGE_STUEBEN_HIERARCHY_H
 
 #include <CGAL/Spherical_parameterization/internal/AMG/Compressed_row_matrix.h>
+
+#include <CGAL/assertions.h>
 
 #include <Eigen/Dense>
 #include <Eigen/Sparse>
@@ -538,6 +547,7 @@ private:
         for(int c = 0; c < K; ++c)
           defect[c] -= a * xj[c];
       }
+      CGAL_assertion(column[row_start[i]] == i); // build() put the diagonal entry first in each row
       const double diagonal = value[row_start[i]];
       for(int c = 0; c < K; ++c)
         x[K * i + c] += defect[c] / diagonal;

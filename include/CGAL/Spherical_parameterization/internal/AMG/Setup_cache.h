@@ -1,3 +1,10 @@
+// Copyright (c) 2026 CGAL Spherical Parameterization contributors.
+// This file is part of CGAL Spherical Parameterization, a package in CGAL's style (www.cgal.org).
+//
+// SPDX-License-Identifier: GPL-3.0-or-later
+//
+// Author(s)     : CGAL Spherical Parameterization contributors
+
 // What a setup of AMG_solver_traits was computed from, so that a call with the same matrix and setup parameters
 // reuses it: the u and v solves of a parameterization then cost one setup. The matrix is compared through its
 // sizes and a hash of its compressed arrays (structure and values), which costs one pass over them instead of a

@@ -1,3 +1,10 @@
+// Copyright (c) 2026 CGAL Spherical Parameterization contributors.
+// This file is part of CGAL Spherical Parameterization, a package in CGAL's style (www.cgal.org).
+//
+// SPDX-License-Identifier: GPL-3.0-or-later
+//
+// Author(s)     : CGAL Spherical Parameterization contributors
+
 // Stage 3, beyond the paper: Newton's method on all vertices at once, in tangent coordinates.
 //
 // Non-symmetric weights (mean value) minimize their imbalances by the least-squares iterations of
@@ -14,16 +21,16 @@
 // every positively oriented triangle positive (exact predicate) and lowers the paper's residual, and the
 // paper's local Newton sweeps whenever no such step exists.
 
-#ifndef CGAL_SPHERICAL_PARAMETERIZATION_INTERNAL_GLOBAL_NEWTON_H
-#define CGAL_SPHERICAL_PARAMETERIZATION_INTERNAL_GLOBAL_NEWTON_H
+#ifndef CGAL_SPHERICAL_PARAMETERIZATION_INTERNAL_STAGE3_GLOBAL_NEWTON_H
+#define CGAL_SPHERICAL_PARAMETERIZATION_INTERNAL_STAGE3_GLOBAL_NEWTON_H
 
 #include <CGAL/Spherical_parameterization/internal/deferred_stop_signals.h>
 #include <CGAL/Spherical_parameterization/internal/sphere_iterations.h>
-#include <CGAL/Spherical_parameterization/internal/mobius_newton.h>
-#include <CGAL/Spherical_parameterization/internal/tangent_newton_system.h>
-#include <CGAL/Spherical_parameterization/internal/weight_continuation.h>
-#include <CGAL/Spherical_parameterization/internal/constrained_balance.h>
-#include <CGAL/Spherical_parameterization/internal/imbalance_least_squares.h>
+#include <CGAL/Spherical_parameterization/internal/stage3/constrained_balance.h>
+#include <CGAL/Spherical_parameterization/internal/stage3/imbalance_least_squares.h>
+#include <CGAL/Spherical_parameterization/internal/stage3/mobius_newton.h>
+#include <CGAL/Spherical_parameterization/internal/stage3/tangent_newton_system.h>
+#include <CGAL/Spherical_parameterization/internal/stage3/weight_continuation.h>
 
 #include <Eigen/Sparse>
 #include <Eigen/SparseLU>
@@ -93,8 +100,8 @@ public:
         Eigen::SparseMatrix<double> normal = Eigen::SparseMatrix<double>(jacobian.transpose()) * jacobian;
         const double shift = marquardt_ * normal.diagonal().mean();
         for(int k = 0; k < normal.rows(); ++k) normal.coeffRef(k, k) += shift;
-        // The pattern of J^T J is the same at every step: order it (METIS) once, factorize every time. Ordering at
-        // every attempt cost up to six METIS calls per step (seconds between two progress reports at 10k vertices).
+        // The pattern of J^T J is the same at every step: order it (METIS) once, factorize every time (ordering it
+        // at every attempt was slow: the manual's Method section).
         if(!ldlt_analyzed_ || normal.nonZeros() != analyzed_nonzeros_) {
           const Deferred_stop_signals deferred;  // METIS orders the unknowns (see deferred_stop_signals.h)
           ldlt_.analyzePattern(normal);
@@ -212,7 +219,7 @@ private:
 // Stagnation: non-symmetric weights (mean value) generally admit no exact solution, because the three torque
 // identities that make the equations consistent for symmetric weights fail; the residual then levels off at a
 // least-squares floor (tuning.cautious_stagnation_window).
-inline Iteration_report cautious_newton(Sphere_state& state, const Iteration_options& options, const Stopwatch& clock)
+inline Iteration_report cautious_newton(Sphere_state& state, const Iteration_options& options, const CGAL::Real_timer& clock)
 {
   const Solver_tuning& tuning = options.tuning;
   Iteration_driver driver(state, options, clock, "global newton", options.max_newton_sweeps);
@@ -252,7 +259,7 @@ inline bool has_tutte_weights(const Sphere_system& system)
 // from the same map with the line search on the scale-free imbalances instead of Res (see Step_merit: Res led
 // some steps along the boosts towards a collapse). The first phase from the two-disk guess and on each multilevel
 // level (`boost_aim`: Boost_aim::ROOT there). The reports of both attempts are added up.
-inline Iteration_report full_newton_steps(Sphere_state& state, const Iteration_options& options, const Stopwatch& clock,
+inline Iteration_report full_newton_steps(Sphere_state& state, const Iteration_options& options, const CGAL::Real_timer& clock,
                                           Boost_aim boost_aim = Boost_aim::MAXIMUM)
 {
   const std::vector<Vector3> start = state.positions();
@@ -270,7 +277,7 @@ inline Iteration_report full_newton_steps(Sphere_state& state, const Iteration_o
 // imbalances in their own scale, after at most 50 cautious Newton steps where the map has non-positive faces (they
 // start from a bijective map). With the paper's criterion (Res, whose least-squares problem the collapse solves), the
 // cautious Newton alone, as the paper's test asks.
-inline Iteration_report least_squares_newton(Sphere_state& state, const Iteration_options& options, const Stopwatch& clock)
+inline Iteration_report least_squares_newton(Sphere_state& state, const Iteration_options& options, const CGAL::Real_timer& clock)
 {
   if(options.convergence_test == Convergence_test::PAPER_RESIDUAL) return cautious_newton(state, options, clock);
   Iteration_report report;
@@ -296,12 +303,12 @@ inline Iteration_report least_squares_newton(Sphere_state& state, const Iteratio
 // Stage 3. Symmetric weights: Newton's steps through folds, then the bijectivity-preserving Moebius-aware Newton; if it gives up and the weights are not Tutte's, the
 // continuation from Tutte's weights; if that fails too, the cautious Newton from the best iterate so far.
 // Non-symmetric weights: least_squares_newton().
-inline Iteration_report global_newton(Sphere_state& state, const Iteration_options& options, const Stopwatch& clock,
+inline Iteration_report global_newton(Sphere_state& state, const Iteration_options& options, const CGAL::Real_timer& clock,
                                       const std::vector<Vector3>* initial_guess = nullptr)
 {
   const Sphere_system& system = state.system();
   if(!system.symmetric) return least_squares_newton(state, options, clock);
-  // Full Newton steps through folds first: on most meshes the fastest way to the balanced map (4 to 20 steps).
+  // Full Newton steps through folds first: on most meshes the fastest way to the balanced map.
   Mobius_newton_statistics statistics;
   Iteration_report free_steps = mobius_newton(state, options, clock, &statistics, options.tuning.free_newton_patience, true);
   if(free_steps.converged || free_steps.cancelled || free_steps.out_of_time) return free_steps;
@@ -330,15 +337,14 @@ inline Iteration_report global_newton(Sphere_state& state, const Iteration_optio
     if(continuation.reached && passes_the_test()) return report;
     if(continuation.cancelled) { report.cancelled = true; return report; }
     // Where the path ends, the interior-point iterations (constrained_balance.h) continue towards the target
-    // weights' balanced map, every iterate bijective: on homer the path ends at 55% and they reach it in 16 steps.
+    // weights' balanced map, every iterate bijective.
     const Constrained_balance_report barrier = constrained_balance(state, options, clock);
     report.sweeps += barrier.newton_steps;
     if(barrier.reached && passes_the_test()) return report;
     if(barrier.cancelled) { report.cancelled = true; return report; }
     // The cautious Newton goes on from the better of the two maps (lower root mean square imbalance, the best
     // iterate's rule) and returns its best iterate, so the result is never worse than either. Where the barrier's
-    // steps stall before the tolerance (triceratops, cow), its map is the better one by far: root mean square
-    // imbalance 0.06 and 0.07, mean angle error 7.7 degrees on both, against 14.2 and 19.2 from the other start.
+    // steps stall before the tolerance, its map is usually the better one by far (the manual's Method section).
     if(!(imbalance_merit(system, state.positions()) < imbalance_merit(system, start))) state.assign(start);
   }
   Iteration_options remaining = options;
@@ -355,4 +361,4 @@ inline Iteration_report global_newton(Sphere_state& state, const Iteration_optio
 } // namespace Spherical_parameterization
 } // namespace CGAL
 
-#endif // CGAL_SPHERICAL_PARAMETERIZATION_INTERNAL_GLOBAL_NEWTON_H
+#endif // CGAL_SPHERICAL_PARAMETERIZATION_INTERNAL_STAGE3_GLOBAL_NEWTON_H

@@ -1,3 +1,10 @@
+// Copyright (c) 2026 CGAL Spherical Parameterization contributors.
+// This file is part of CGAL Spherical Parameterization, a package in CGAL's style (www.cgal.org).
+//
+// SPDX-License-Identifier: GPL-3.0-or-later
+//
+// Author(s)     : CGAL Spherical Parameterization contributors
+
 // Stage 3, beyond the paper: the map of least imbalance, for non-symmetric weights (mean value), whose balance
 // equations are three too many and in general have no exact solution.
 //
@@ -19,16 +26,16 @@
 // Stationarity, in the scale of the imbalance: sigma_k = |grad_k Phi_mu| / S_k with S_k = |alpha_k| / l_k +
 // sum_{j: k in N(j)} |w_jk| / l_j, the size of grad_k Psi if every r_i of its terms had length 1.
 
-#ifndef CGAL_SPHERICAL_PARAMETERIZATION_INTERNAL_IMBALANCE_LEAST_SQUARES_H
-#define CGAL_SPHERICAL_PARAMETERIZATION_INTERNAL_IMBALANCE_LEAST_SQUARES_H
+#ifndef CGAL_SPHERICAL_PARAMETERIZATION_INTERNAL_STAGE3_IMBALANCE_LEAST_SQUARES_H
+#define CGAL_SPHERICAL_PARAMETERIZATION_INTERNAL_STAGE3_IMBALANCE_LEAST_SQUARES_H
 
 #include <CGAL/Spherical_parameterization/internal/Sphere_state.h>
 #include <CGAL/Spherical_parameterization/internal/Sphere_system.h>
 #include <CGAL/Spherical_parameterization/internal/Vector3.h>
-#include <CGAL/Spherical_parameterization/internal/constrained_balance.h>
-#include <CGAL/Spherical_parameterization/internal/tangent_newton_system.h>
 #include <CGAL/Spherical_parameterization/internal/deferred_stop_signals.h>
 #include <CGAL/Spherical_parameterization/internal/iteration_driver.h>
+#include <CGAL/Spherical_parameterization/internal/stage3/constrained_balance.h>
+#include <CGAL/Spherical_parameterization/internal/stage3/tangent_newton_system.h>
 
 #include <Eigen/Sparse>
 #include <Eigen/SparseCholesky>
@@ -300,7 +307,7 @@ struct Least_squares_report {
 // tuning.barrier_final_fraction times the tolerance, each with c_f set at its start, solved to
 // max(tolerance, tuning.barrier_phase_factor mu), for at most tuning.least_squares_phase_steps steps. Every iterate
 // is bijective; the one of least Psi (root mean square imbalance) is returned when the test is not met.
-inline Least_squares_report imbalance_least_squares(Sphere_state& state, const Iteration_options& options, const Stopwatch& clock)
+inline Least_squares_report imbalance_least_squares(Sphere_state& state, const Iteration_options& options, const CGAL::Real_timer& clock)
 {
   Least_squares_report report;
   const Solver_tuning& tuning = options.tuning;
@@ -334,11 +341,11 @@ inline Least_squares_report imbalance_least_squares(Sphere_state& state, const I
     // A step is one sparse LU that cannot be interrupted (seconds on brain cortices): none is started that the
     // previous one's duration says would end past the budget.
     if(past_time_budget(options, clock) ||
-       (options.max_seconds >= 0. && clock.seconds() + last_step_seconds > options.max_seconds)) {
+       (options.max_seconds >= 0. && clock.time() + last_step_seconds > options.max_seconds)) {
       report.out_of_time = true;
       break;
     }
-    const double step_start = clock.seconds();
+    const double step_start = clock.time();
     if(options.cancel_requested()) { report.cancelled = true; break; }
     if(report.steps >= options.max_newton_sweeps) break;
     problem.linearize(x, mu);
@@ -392,7 +399,7 @@ inline Least_squares_report imbalance_least_squares(Sphere_state& state, const I
         lambda = std::min(lambda * 10., tuning.marquardt_max);
       }
     }
-    last_step_seconds = clock.seconds() - step_start;
+    last_step_seconds = clock.time() - step_start;
     // One report per step, as the other stage-3 solvers send (their Iteration_driver): the progress line, and the
     // user's callback, whose false cancels.
     if(options.progress && !options.progress("global newton", report.steps, compute_residuals(system, x).paper, 0)) {
@@ -414,4 +421,4 @@ inline Least_squares_report imbalance_least_squares(Sphere_state& state, const I
 } // namespace Spherical_parameterization
 } // namespace CGAL
 
-#endif // CGAL_SPHERICAL_PARAMETERIZATION_INTERNAL_IMBALANCE_LEAST_SQUARES_H
+#endif // CGAL_SPHERICAL_PARAMETERIZATION_INTERNAL_STAGE3_IMBALANCE_LEAST_SQUARES_H

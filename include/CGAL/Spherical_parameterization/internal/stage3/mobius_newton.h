@@ -1,3 +1,10 @@
+// Copyright (c) 2026 CGAL Spherical Parameterization contributors.
+// This file is part of CGAL Spherical Parameterization, a package in CGAL's style (www.cgal.org).
+//
+// SPDX-License-Identifier: GPL-3.0-or-later
+//
+// Author(s)     : CGAL Spherical Parameterization contributors
+
 // Stage 3, beyond the paper, for symmetric weights: Newton's method on all vertices at once with the Moebius
 // boosts handled exactly (see mobius.h).
 //
@@ -9,13 +16,15 @@
 // sweeps move the iterate instead. When the steps keep being cut short, it gives up and restores its best
 // iterate, so that another strategy can continue (global_newton.h).
 
-#ifndef CGAL_SPHERICAL_PARAMETERIZATION_INTERNAL_MOBIUS_NEWTON_H
-#define CGAL_SPHERICAL_PARAMETERIZATION_INTERNAL_MOBIUS_NEWTON_H
+#ifndef CGAL_SPHERICAL_PARAMETERIZATION_INTERNAL_STAGE3_MOBIUS_NEWTON_H
+#define CGAL_SPHERICAL_PARAMETERIZATION_INTERNAL_STAGE3_MOBIUS_NEWTON_H
 
-#include <CGAL/Spherical_parameterization/internal/mobius.h>
 #include <CGAL/Spherical_parameterization/internal/sphere_iterations.h>
-#include <CGAL/Spherical_parameterization/internal/tangent_krylov_system.h>
-#include <CGAL/Spherical_parameterization/internal/tangent_newton_system.h>
+#include <CGAL/Spherical_parameterization/internal/stage3/mobius.h>
+#include <CGAL/Spherical_parameterization/internal/stage3/tangent_krylov_system.h>
+#include <CGAL/Spherical_parameterization/internal/stage3/tangent_newton_system.h>
+
+#include <CGAL/number_type_config.h>
 
 #include <cmath>
 #include <cstddef>
@@ -59,7 +68,7 @@ inline bool has_degree_one(const Sphere_system& system, const std::vector<Vector
 // towards a collapse (CGAL's handle). The imbalances (imbalance_merit) are scale-free: a collapse does not lower them.
 enum class Step_merit { RESIDUAL, IMBALANCE };
 
-inline Iteration_report mobius_newton(Sphere_state& state, const Iteration_options& options, const Stopwatch& clock,
+inline Iteration_report mobius_newton(Sphere_state& state, const Iteration_options& options, const CGAL::Real_timer& clock,
                                       Mobius_newton_statistics* statistics = nullptr, std::size_t patience = 3,
                                       bool allow_folds = false, Step_merit step_merit = Step_merit::RESIDUAL,
                                       Boost_aim boost_aim = Boost_aim::MAXIMUM)
@@ -191,4 +200,4 @@ inline Iteration_report mobius_newton(Sphere_state& state, const Iteration_optio
 } // namespace Spherical_parameterization
 } // namespace CGAL
 
-#endif // CGAL_SPHERICAL_PARAMETERIZATION_INTERNAL_MOBIUS_NEWTON_H
+#endif // CGAL_SPHERICAL_PARAMETERIZATION_INTERNAL_STAGE3_MOBIUS_NEWTON_H

@@ -1,7 +1,14 @@
+// Copyright (c) 2026 CGAL Spherical Parameterization contributors.
+// This file is part of CGAL Spherical Parameterization, a package in CGAL's style (www.cgal.org).
+//
+// SPDX-License-Identifier: GPL-3.0-or-later
+//
+// Author(s)     : CGAL Spherical Parameterization contributors
+
 // Orientation of spherical triangles under CGAL's exact predicate, and their signed areas.
 
-#ifndef CGAL_SPHERICAL_PARAMETERIZATION_INTERNAL_SPHERE_ORIENTATION_H
-#define CGAL_SPHERICAL_PARAMETERIZATION_INTERNAL_SPHERE_ORIENTATION_H
+#ifndef CGAL_SPHERICAL_PARAMETERIZATION_INTERNAL_CERTIFICATE_H
+#define CGAL_SPHERICAL_PARAMETERIZATION_INTERNAL_CERTIFICATE_H
 
 #include <CGAL/Spherical_parameterization/internal/Vector3.h>
 
@@ -144,4 +151,4 @@ inline Sphere_certificate certify(const std::vector<std::array<int, 3>>& triangl
 } // namespace Spherical_parameterization
 } // namespace CGAL
 
-#endif // CGAL_SPHERICAL_PARAMETERIZATION_INTERNAL_SPHERE_ORIENTATION_H
+#endif // CGAL_SPHERICAL_PARAMETERIZATION_INTERNAL_CERTIFICATE_H

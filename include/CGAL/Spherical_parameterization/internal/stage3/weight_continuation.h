@@ -1,3 +1,10 @@
+// Copyright (c) 2026 CGAL Spherical Parameterization contributors.
+// This file is part of CGAL Spherical Parameterization, a package in CGAL's style (www.cgal.org).
+//
+// SPDX-License-Identifier: GPL-3.0-or-later
+//
+// Author(s)     : CGAL Spherical Parameterization contributors
+
 // Stage 3, beyond the paper: continuation in the weights, for symmetric weights that Newton cannot reach directly.
 //
 // Tutte's weights are the easy case: from the initial guess the Moebius-aware Newton reaches their balanced
@@ -7,10 +14,10 @@
 // ends before s = 1 (cotangent weights: a triangle degenerates and the Jacobian becomes singular), it fails, and
 // that is worth knowing: the target weights have no bijective balanced solution on this path.
 
-#ifndef CGAL_SPHERICAL_PARAMETERIZATION_INTERNAL_WEIGHT_CONTINUATION_H
-#define CGAL_SPHERICAL_PARAMETERIZATION_INTERNAL_WEIGHT_CONTINUATION_H
+#ifndef CGAL_SPHERICAL_PARAMETERIZATION_INTERNAL_STAGE3_WEIGHT_CONTINUATION_H
+#define CGAL_SPHERICAL_PARAMETERIZATION_INTERNAL_STAGE3_WEIGHT_CONTINUATION_H
 
-#include <CGAL/Spherical_parameterization/internal/mobius_newton.h>
+#include <CGAL/Spherical_parameterization/internal/stage3/mobius_newton.h>
 
 #include <algorithm>
 #include <cstddef>
@@ -46,7 +53,7 @@ inline void blend_with_tutte(const Sphere_system& target, double s, Sphere_syste
 // Each solution along the path is computed to the caller's test (to `path_tolerance` when that is the paper's Res). On failure x holds the solution at report.last_parameter (or, if even
 // Tutte's weights failed, whatever Newton's best iterate was).
 inline Continuation_report weight_continuation(const Sphere_system& target, std::vector<Vector3>& x,
-                                               const Iteration_options& options, const Stopwatch& clock,
+                                               const Iteration_options& options, const CGAL::Real_timer& clock,
                                                const std::vector<Vector3>* initial_guess = nullptr,
                                                double path_tolerance = 1e-13, std::size_t patience = 20)
 {
@@ -94,4 +101,4 @@ inline Continuation_report weight_continuation(const Sphere_system& target, std:
 } // namespace Spherical_parameterization
 } // namespace CGAL
 
-#endif // CGAL_SPHERICAL_PARAMETERIZATION_INTERNAL_WEIGHT_CONTINUATION_H
+#endif // CGAL_SPHERICAL_PARAMETERIZATION_INTERNAL_STAGE3_WEIGHT_CONTINUATION_H

@@ -1,3 +1,10 @@
+// Copyright (c) 2026 CGAL Spherical Parameterization contributors.
+// This file is part of CGAL Spherical Parameterization, a package in CGAL's style (www.cgal.org).
+//
+// SPDX-License-Identifier: GPL-3.0-or-later
+//
+// Author(s)     : CGAL Spherical Parameterization contributors
+
 // The Moebius group's part in the balance equations, beyond the paper.
 //
 // With symmetric weights the equations say that x is a critical point of the spring energy
@@ -14,12 +21,12 @@
 //   x -> ((u + T) a + sqrt(1 - T^2) (x - u a)) / (1 + u T),   u = a.x, T = tanh(s),
 // which maps the sphere onto itself, keeps its orientation and maps circles to circles.
 
-#ifndef CGAL_SPHERICAL_PARAMETERIZATION_INTERNAL_MOBIUS_H
-#define CGAL_SPHERICAL_PARAMETERIZATION_INTERNAL_MOBIUS_H
+#ifndef CGAL_SPHERICAL_PARAMETERIZATION_INTERNAL_STAGE3_MOBIUS_H
+#define CGAL_SPHERICAL_PARAMETERIZATION_INTERNAL_STAGE3_MOBIUS_H
 
+#include <CGAL/Spherical_parameterization/internal/Sphere_state.h>
 #include <CGAL/Spherical_parameterization/internal/Sphere_system.h>
 #include <CGAL/Spherical_parameterization/internal/Vector3.h>
-#include <CGAL/Spherical_parameterization/internal/Sphere_state.h>
 #include <CGAL/Spherical_parameterization/internal/iteration_driver.h>
 
 #include <Eigen/Dense>
@@ -256,4 +263,4 @@ inline std::size_t balance_boosts(Sphere_state& state, double target, const Solv
 } // namespace Spherical_parameterization
 } // namespace CGAL
 
-#endif // CGAL_SPHERICAL_PARAMETERIZATION_INTERNAL_MOBIUS_H
+#endif // CGAL_SPHERICAL_PARAMETERIZATION_INTERNAL_STAGE3_MOBIUS_H

@@ -1,3 +1,10 @@
+// Copyright (c) 2026 CGAL Spherical Parameterization contributors.
+// This file is part of CGAL Spherical Parameterization, a package in CGAL's style (www.cgal.org).
+//
+// SPDX-License-Identifier: GPL-3.0-or-later
+//
+// Author(s)     : CGAL Spherical Parameterization contributors
+
 // Newton's linear system in tangent coordinates (the same equations as tangent_newton_system.h), solved
 // iteratively: MINRES with the package's algebraic multigrid as preconditioner, in memory and time linear in the
 // mesh size, where a sparse factorization grows like n^1.5 in time and n log n in memory (3.3M faces: 100 s and
@@ -15,14 +22,14 @@
 //   the tangent planes: -J differs from that projected Laplacian only by terms of the order of the squared edge
 //   lengths and by the frame rotations between neighbours.
 
-#ifndef CGAL_SPHERICAL_PARAMETERIZATION_INTERNAL_TANGENT_KRYLOV_SYSTEM_H
-#define CGAL_SPHERICAL_PARAMETERIZATION_INTERNAL_TANGENT_KRYLOV_SYSTEM_H
+#ifndef CGAL_SPHERICAL_PARAMETERIZATION_INTERNAL_STAGE3_TANGENT_KRYLOV_SYSTEM_H
+#define CGAL_SPHERICAL_PARAMETERIZATION_INTERNAL_STAGE3_TANGENT_KRYLOV_SYSTEM_H
 
 #include <CGAL/Spherical_parameterization/internal/AMG/Krylov_solvers.h>
 #include <CGAL/Spherical_parameterization/internal/AMG/Ruge_stueben_hierarchy.h>
 #include <CGAL/Spherical_parameterization/internal/Sphere_system.h>
 #include <CGAL/Spherical_parameterization/internal/Vector3.h>
-#include <CGAL/Spherical_parameterization/internal/tangent_newton_system.h>
+#include <CGAL/Spherical_parameterization/internal/stage3/tangent_newton_system.h>
 
 #include <algorithm>
 #include <cmath>
@@ -211,4 +218,4 @@ private:
 } // namespace Spherical_parameterization
 } // namespace CGAL
 
-#endif // CGAL_SPHERICAL_PARAMETERIZATION_INTERNAL_TANGENT_KRYLOV_SYSTEM_H
+#endif // CGAL_SPHERICAL_PARAMETERIZATION_INTERNAL_STAGE3_TANGENT_KRYLOV_SYSTEM_H

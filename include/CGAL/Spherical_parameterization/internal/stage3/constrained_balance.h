@@ -1,3 +1,10 @@
+// Copyright (c) 2026 CGAL Spherical Parameterization contributors.
+// This file is part of CGAL Spherical Parameterization, a package in CGAL's style (www.cgal.org).
+//
+// SPDX-License-Identifier: GPL-3.0-or-later
+//
+// Author(s)     : CGAL Spherical Parameterization contributors
+
 // Stage 3, beyond the paper: the constrained balance, for symmetric weights whose balanced map is not bijective
 // (cotangent weights can be negative: their balanced map may fold) or cannot be reached without leaving the
 // bijective maps.
@@ -10,26 +17,26 @@
 // for mu = mu_0, mu_0 / 10, ..., each found by Newton's method (Riemannian gradient and Hessian in tangent
 // coordinates, a sparse LU, a line search that keeps every det_f > 0 and lowers the scale-free norm of the
 // gradient), each phase starting from the previous one's map. The boost part of each step is applied as an exact
-// boost, as in mobius_newton.h (added and projected, it folded the map at every step length on homer).
+// boost, as in mobius_newton.h (added and projected, it folded the map at every step length).
 // c_f, set at the start of each phase, makes the face's barrier force at each of its vertices at most mu times the
 // vertex's spring scale l_i = sum_j |w_ij| |x_j - x_i|, on every scale of the mesh (thin limbs whose triangles are
 // orders of magnitude smaller than the body's, slivers): with c_f from the edge lengths alone, the barrier's force
-// was 26,000 times the spring scale at triceratops' slivers and no step got anywhere. As mu -> 0 the barrier's
-// force vanishes except at the faces that hold the map back.
+// dwarfed the spring scale at slivers and no step got anywhere. As mu -> 0 the barrier's force vanishes except at
+// the faces that hold the map back.
 //
-// Measured (CGAL's meshes, cotangent weights, from where the weight continuation ends): homer reaches its balanced
-// map in 16 steps (angle error 4.25 degrees). On triceratops and cow, whose cotangent balanced maps fold, the steps
-// are cut ever shorter by the triangles about to degenerate (a primal barrier's Newton model holds only close to
-// the central path): `reached` stays false, and global_newton.h goes on from the better of this map and its own.
+// Where the target weights' balanced map is bijective, the iterations reach it (the manual's Method section has
+// the meshes and step counts). Where it folds, the steps are cut ever shorter by the triangles about to degenerate
+// (a primal barrier's Newton model holds only close to the central path): `reached` stays false, and
+// global_newton.h goes on from the better of this map and its own.
 
-#ifndef CGAL_SPHERICAL_PARAMETERIZATION_INTERNAL_CONSTRAINED_BALANCE_H
-#define CGAL_SPHERICAL_PARAMETERIZATION_INTERNAL_CONSTRAINED_BALANCE_H
+#ifndef CGAL_SPHERICAL_PARAMETERIZATION_INTERNAL_STAGE3_CONSTRAINED_BALANCE_H
+#define CGAL_SPHERICAL_PARAMETERIZATION_INTERNAL_STAGE3_CONSTRAINED_BALANCE_H
 
 #include <CGAL/Spherical_parameterization/internal/Sphere_state.h>
 #include <CGAL/Spherical_parameterization/internal/Sphere_system.h>
 #include <CGAL/Spherical_parameterization/internal/Vector3.h>
 #include <CGAL/Spherical_parameterization/internal/iteration_driver.h>
-#include <CGAL/Spherical_parameterization/internal/mobius.h>
+#include <CGAL/Spherical_parameterization/internal/stage3/mobius.h>
 
 #include <Eigen/Sparse>
 #include <Eigen/SparseLU>
@@ -266,7 +273,7 @@ private:
 // the last one (mu = tuning.barrier_final_fraction * tolerance) at the tolerance. A phase also ends when
 // tuning.barrier_patience steps in a row had to be cut below a quarter or when no step lowers the merit; `reached`
 // says whether the last one met the tolerance. Every iterate is bijective.
-inline Constrained_balance_report constrained_balance(Sphere_state& state, const Iteration_options& options, const Stopwatch& clock)
+inline Constrained_balance_report constrained_balance(Sphere_state& state, const Iteration_options& options, const CGAL::Real_timer& clock)
 {
   const Solver_tuning& tuning = options.tuning;
   Constrained_balance_report report;
@@ -295,7 +302,7 @@ inline Constrained_balance_report constrained_balance(Sphere_state& state, const
       if(max_g <= phase_tolerance) break;
       if(!solver.newton_step(x, mu, g, step)) return report;
       // Rotations change nothing; the boost part, along the nearly singular directions, is applied as an exact
-      // boost (as in mobius_newton.h): added and projected, it folded the map at every step length on homer.
+      // boost (as in mobius_newton.h): added and projected, it folded the map at every step length.
       Vector3 rotation, boost;
       remove_rotation_and_boost(x, step, rotation, boost);
       double max_trial = 0., trial_merit = 0.;
@@ -335,4 +342,4 @@ inline Constrained_balance_report constrained_balance(Sphere_state& state, const
 } // namespace Spherical_parameterization
 } // namespace CGAL
 
-#endif // CGAL_SPHERICAL_PARAMETERIZATION_INTERNAL_CONSTRAINED_BALANCE_H
+#endif // CGAL_SPHERICAL_PARAMETERIZATION_INTERNAL_STAGE3_CONSTRAINED_BALANCE_H

@@ -1,3 +1,10 @@
+// Copyright (c) 2026 CGAL Spherical Parameterization contributors.
+// This file is part of CGAL Spherical Parameterization, a package in CGAL's style (www.cgal.org).
+//
+// SPDX-License-Identifier: GPL-3.0-or-later
+//
+// Author(s)     : CGAL Spherical Parameterization contributors
+
 // Newton's linear system for the balance equations in tangent coordinates, for symmetric weights.
 //
 // Unknowns: a displacement d_i = a_i t1_i + b_i t2_i in the tangent plane of every x_i. Equations: the tangential
@@ -8,12 +15,14 @@
 // does not move around it). The matrix is factorized with a sparse LDL^T whose fill-reducing order is computed
 // once, on the vertex graph, and whose pattern (upper triangle only) is written in place at every step.
 
-#ifndef CGAL_SPHERICAL_PARAMETERIZATION_INTERNAL_TANGENT_NEWTON_SYSTEM_H
-#define CGAL_SPHERICAL_PARAMETERIZATION_INTERNAL_TANGENT_NEWTON_SYSTEM_H
+#ifndef CGAL_SPHERICAL_PARAMETERIZATION_INTERNAL_STAGE3_TANGENT_NEWTON_SYSTEM_H
+#define CGAL_SPHERICAL_PARAMETERIZATION_INTERNAL_STAGE3_TANGENT_NEWTON_SYSTEM_H
 
 #include <CGAL/Spherical_parameterization/internal/Sphere_system.h>
-#include <CGAL/Spherical_parameterization/internal/deferred_stop_signals.h>
 #include <CGAL/Spherical_parameterization/internal/Vector3.h>
+#include <CGAL/Spherical_parameterization/internal/deferred_stop_signals.h>
+
+#include <CGAL/assertions.h>
 
 #include <Eigen/OrderingMethods>
 #include <Eigen/SparseCholesky>
@@ -98,7 +107,9 @@ inline std::size_t compressed_slot(const Eigen::SparseMatrix<double>& matrix, Ei
 {
   const int* begin = matrix.innerIndexPtr() + matrix.outerIndexPtr()[column];
   const int* end = matrix.innerIndexPtr() + matrix.outerIndexPtr()[column + 1];
-  return static_cast<std::size_t>(std::lower_bound(begin, end, static_cast<int>(row)) - matrix.innerIndexPtr());
+  const int* slot = std::lower_bound(begin, end, static_cast<int>(row));
+  CGAL_assertion(slot != end && *slot == static_cast<int>(row));  // the pattern holds every block
+  return static_cast<std::size_t>(slot - matrix.innerIndexPtr());
 }
 
 // A 2n x 2n matrix with the 2x2 blocks (i, i) and (i, j), j a neighbour of i, all zero, and where each block's four
@@ -350,4 +361,4 @@ private:
 } // namespace Spherical_parameterization
 } // namespace CGAL
 
-#endif // CGAL_SPHERICAL_PARAMETERIZATION_INTERNAL_TANGENT_NEWTON_SYSTEM_H
+#endif // CGAL_SPHERICAL_PARAMETERIZATION_INTERNAL_STAGE3_TANGENT_NEWTON_SYSTEM_H
