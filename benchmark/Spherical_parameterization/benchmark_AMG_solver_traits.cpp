@@ -71,10 +71,14 @@ System poisson_grid(int side)
     {
       const int i = y * side + x;
       triplets.emplace_back(i, i, 4.);
-      if(x > 0) triplets.emplace_back(i, i - 1, -1.);
-      if(x + 1 < side) triplets.emplace_back(i, i + 1, -1.);
-      if(y > 0) triplets.emplace_back(i, i - side, -1.);
-      if(y + 1 < side) triplets.emplace_back(i, i + side, -1.);
+      if(x > 0)
+        triplets.emplace_back(i, i - 1, -1.);
+      if(x + 1 < side)
+        triplets.emplace_back(i, i + 1, -1.);
+      if(y > 0)
+        triplets.emplace_back(i, i - side, -1.);
+      if(y + 1 < side)
+        triplets.emplace_back(i, i + side, -1.);
     }
   system.A.resize(n, n);
   system.A.setFromTriplets(triplets.begin(), triplets.end());
@@ -89,7 +93,10 @@ System poisson_grid(int side)
   return system;
 }
 
-Eigen::Vector3d to_eigen(const CGAL::Epick::Point_3& p) { return Eigen::Vector3d(p.x(), p.y(), p.z()); }
+Eigen::Vector3d to_eigen(const CGAL::Epick::Point_3& p)
+{
+  return Eigen::Vector3d(p.x(), p.y(), p.z());
+}
 
 // Interior system of a disk (the closed mesh minus the star of its first vertex) with the border on the unit
 // circle; cotangent weights (symmetric) or mean-value weights (non-symmetric).
@@ -131,9 +138,7 @@ System mesh_disk_system(const std::string& path, bool mean_value)
     const Eigen::Vector3d k2 = to_eigen(mesh.point(mesh.target(mesh.next(mesh.opposite(h)))));
     if(!mean_value)
     {
-      auto cotangent = [](const Eigen::Vector3d& a, const Eigen::Vector3d& b) {
-        return a.dot(b) / a.cross(b).norm();
-      };
+      auto cotangent = [](const Eigen::Vector3d& a, const Eigen::Vector3d& b) { return a.dot(b) / a.cross(b).norm(); };
       return 0.5 * (cotangent(xi - k1, xj - k1) + cotangent(xi - k2, xj - k2));
     }
     auto half_tangent = [](const Eigen::Vector3d& a, const Eigen::Vector3d& b) {
@@ -204,16 +209,26 @@ double relative_residual(const System& s, const Eigen::VectorXd& xu, const Eigen
   return std::max((s.bu - s.A * xu).norm() / s.bu.norm(), (s.bv - s.A * xv).norm() / s.bv.norm());
 }
 
-enum class Method { AMG, SIMPLICIAL_LDLT, SPARSE_LU, BICGSTAB_ILUT };
+enum class Method
+{
+  AMG,
+  SIMPLICIAL_LDLT,
+  SPARSE_LU,
+  BICGSTAB_ILUT
+};
 
 const char* method_name(Method method, bool symmetric)
 {
   switch(method)
   {
-    case Method::AMG: return symmetric ? "AMG+CG" : "AMG+GMRES";
-    case Method::SIMPLICIAL_LDLT: return "Eigen SimplicialLDLT";
-    case Method::SPARSE_LU: return "Eigen SparseLU";
-    default: return "BiCGSTAB+IncompleteLUT";
+  case Method::AMG:
+    return symmetric ? "AMG+CG" : "AMG+GMRES";
+  case Method::SIMPLICIAL_LDLT:
+    return "Eigen SimplicialLDLT";
+  case Method::SPARSE_LU:
+    return "Eigen SparseLU";
+  default:
+    return "BiCGSTAB+IncompleteLUT";
   }
 }
 
@@ -242,52 +257,52 @@ Measurement run_method(const System& s, Method method)
   Measurement m;
   switch(method)
   {
-    case Method::AMG:
-    {
-      AMG_traits::Parameters parameters;
-      parameters.direct_solver_threshold = 0; // measure AMG itself at every size
-      parameters.direct_solver_threshold_non_symmetric = 0;
-      AMG_traits solver(parameters);
-      const AMG_traits::Matrix A(s.A);
-      AMG_traits::Vector bu(std::size_t(s.bu.size())), bv(std::size_t(s.bv.size())), xu, xv;
-      bu = s.bu;
-      bv = s.bv;
-      A.eigen_object(); // assembled: the input of the solver, as s.A is for Eigen's solvers
-      double D;
-      start_memory_measurement();
-      Clock::time_point start = Clock::now();
-      m.ok = solver.factor(A, D);
-      m.setup_seconds = seconds_since(start);
-      start = Clock::now();
-      m.ok = m.ok && solver.linear_solver(bu, xu);
-      const int iterations_u = solver.statistics().iterations;
-      m.ok = m.ok && solver.linear_solver(bv, xv);
-      m.solve_seconds = seconds_since(start);
-      m.iterations = std::max(iterations_u, solver.statistics().iterations);
-      m.relative_residual = relative_residual(s, xu, xv);
-      break;
-    }
-    case Method::SIMPLICIAL_LDLT:
-    {
-      Eigen::SimplicialLDLT<Sparse_matrix> solver;
-      m = run_eigen_solver(s, solver);
-      break;
-    }
-    case Method::SPARSE_LU:
-    {
-      Eigen::SparseLU<Sparse_matrix> solver;
-      m = run_eigen_solver(s, solver);
-      break;
-    }
-    case Method::BICGSTAB_ILUT:
-    {
-      Eigen::BiCGSTAB<Sparse_matrix, Eigen::IncompleteLUT<double>> solver;
-      solver.setTolerance(1e-10);
-      solver.setMaxIterations(2000);
-      m = run_eigen_solver(s, solver);
-      m.iterations = int(solver.iterations());
-      break;
-    }
+  case Method::AMG:
+  {
+    AMG_traits::Parameters parameters;
+    parameters.direct_solver_threshold = 0; // measure AMG itself at every size
+    parameters.direct_solver_threshold_non_symmetric = 0;
+    AMG_traits solver(parameters);
+    const AMG_traits::Matrix A(s.A);
+    AMG_traits::Vector bu(std::size_t(s.bu.size())), bv(std::size_t(s.bv.size())), xu, xv;
+    bu = s.bu;
+    bv = s.bv;
+    A.eigen_object(); // assembled: the input of the solver, as s.A is for Eigen's solvers
+    double D;
+    start_memory_measurement();
+    Clock::time_point start = Clock::now();
+    m.ok = solver.factor(A, D);
+    m.setup_seconds = seconds_since(start);
+    start = Clock::now();
+    m.ok = m.ok && solver.linear_solver(bu, xu);
+    const int iterations_u = solver.statistics().iterations;
+    m.ok = m.ok && solver.linear_solver(bv, xv);
+    m.solve_seconds = seconds_since(start);
+    m.iterations = std::max(iterations_u, solver.statistics().iterations);
+    m.relative_residual = relative_residual(s, xu, xv);
+    break;
+  }
+  case Method::SIMPLICIAL_LDLT:
+  {
+    Eigen::SimplicialLDLT<Sparse_matrix> solver;
+    m = run_eigen_solver(s, solver);
+    break;
+  }
+  case Method::SPARSE_LU:
+  {
+    Eigen::SparseLU<Sparse_matrix> solver;
+    m = run_eigen_solver(s, solver);
+    break;
+  }
+  case Method::BICGSTAB_ILUT:
+  {
+    Eigen::BiCGSTAB<Sparse_matrix, Eigen::IncompleteLUT<double>> solver;
+    solver.setTolerance(1e-10);
+    solver.setMaxIterations(2000);
+    m = run_eigen_solver(s, solver);
+    m.iterations = int(solver.iterations());
+    break;
+  }
   }
   m.ok = m.ok && m.relative_residual <= 1e-10;
   return m;
@@ -330,10 +345,14 @@ bool too_slow(Method method, Eigen::Index n)
 {
   switch(method)
   {
-    case Method::SIMPLICIAL_LDLT: return n > 1500000;
-    case Method::SPARSE_LU: return n > 1500000;
-    case Method::BICGSTAB_ILUT: return n > 300000;
-    default: return false;
+  case Method::SIMPLICIAL_LDLT:
+    return n > 1500000;
+  case Method::SPARSE_LU:
+    return n > 1500000;
+  case Method::BICGSTAB_ILUT:
+    return n > 300000;
+  default:
+    return false;
   }
 }
 
@@ -371,8 +390,10 @@ void benchmark(const System& s, int runs)
 int parse_size(const std::string& text)
 {
   double value = std::atof(text.c_str());
-  if(text.find_first_of("kK") != std::string::npos) value *= 1e3;
-  if(text.find_first_of("mM") != std::string::npos) value *= 1e6;
+  if(text.find_first_of("kK") != std::string::npos)
+    value *= 1e3;
+  if(text.find_first_of("mM") != std::string::npos)
+    value *= 1e6;
   return int(std::lround(std::sqrt(value)));
 }
 
@@ -406,8 +427,7 @@ int main(int argc, char** argv)
   if(grid_sides.empty() && meshes.empty())
     grid_sides = {100, 316, 1000, 2000};
 
-  std::printf("Two right-hand sides to a relative residual of 1e-10; medians of %d runs; peak = memory added.\n",
-              runs);
+  std::printf("Two right-hand sides to a relative residual of 1e-10; medians of %d runs; peak = memory added.\n", runs);
   std::printf("| system | unknowns | method | setup s | solve s | total s | iter | rel. residual | peak MB | ok |\n");
   std::printf("|---|---|---|---|---|---|---|---|---|---|\n");
   for(int side : grid_sides)

@@ -19,11 +19,23 @@
 
 int main(int argc, char** argv)
 {
-  if(argc != 4) { std::cerr << "usage: make_subdivided_mesh INPUT ROUNDS OUTPUT\n"; return 2; }
+  if(argc != 4)
+  {
+    std::cerr << "usage: make_subdivided_mesh INPUT ROUNDS OUTPUT\n";
+    return 2;
+  }
   CGAL::Surface_mesh<CGAL::Epick::Point_3> mesh;
-  if(!CGAL::IO::read_polygon_mesh(argv[1], mesh)) { std::cerr << "cannot read " << argv[1] << "\n"; return 1; }
+  if(!CGAL::IO::read_polygon_mesh(argv[1], mesh))
+  {
+    std::cerr << "cannot read " << argv[1] << "\n";
+    return 1;
+  }
   CGAL::Subdivision_method_3::Loop_subdivision(mesh, CGAL::parameters::number_of_iterations(std::atoi(argv[2])));
-  if(!CGAL::IO::write_polygon_mesh(argv[3], mesh, CGAL::parameters::stream_precision(17))) { std::cerr << "cannot write\n"; return 1; }
+  if(!CGAL::IO::write_polygon_mesh(argv[3], mesh, CGAL::parameters::stream_precision(17)))
+  {
+    std::cerr << "cannot write\n";
+    return 1;
+  }
   std::cout << argv[3] << ": " << mesh.number_of_vertices() << " vertices, " << mesh.number_of_faces() << " faces\n";
   return 0;
 }

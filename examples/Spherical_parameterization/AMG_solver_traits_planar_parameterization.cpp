@@ -49,12 +49,14 @@ int main(int argc, char** argv)
 {
   const std::string input = (argc > 1) ? argv[1] : CGAL::data_file_path("meshes/nefertiti.off");
   Mesh mesh;
-  if(!CGAL::IO::read_polygon_mesh(input, mesh)) {
+  if(!CGAL::IO::read_polygon_mesh(input, mesh))
+  {
     std::cerr << "Cannot read a mesh from " << input << std::endl;
     return EXIT_FAILURE;
   }
   const halfedge_descriptor border = CGAL::Polygon_mesh_processing::longest_border(mesh).first;
-  if(border == Mesh::null_halfedge()) {
+  if(border == Mesh::null_halfedge())
+  {
     std::cerr << input << " has no border: a disk is needed" << std::endl;
     return EXIT_FAILURE;
   }
@@ -68,12 +70,14 @@ int main(int argc, char** argv)
 
   Mesh::Property_map<vertex_descriptor, Point_2> uv = mesh.add_property_map<vertex_descriptor, Point_2>("v:uv").first;
   const SMP::Error_code status = SMP::parameterize(mesh, Parameterizer(Border_parameterizer(), amg), border, uv);
-  if(status != SMP::OK) {
+  if(status != SMP::OK)
+  {
     std::cerr << "The parameterization failed (error code " << status << ")" << std::endl;
     return EXIT_FAILURE;
   }
   std::size_t folded = 0;
-  for(face_descriptor f : faces(mesh)) {
+  for(face_descriptor f : faces(mesh))
+  {
     const halfedge_descriptor h = halfedge(f, mesh);
     if(CGAL::orientation(uv[source(h, mesh)], uv[target(h, mesh)], uv[target(next(h, mesh), mesh)]) != CGAL::LEFT_TURN)
       ++folded;
@@ -87,9 +91,11 @@ int main(int argc, char** argv)
   const int n = static_cast<int>(num_vertices(mesh)); // a freshly read Surface_mesh has indices 0..n-1
   const double t = 1.;
   SP::AMG_solver_traits::Matrix A(n, n);
-  for(vertex_descriptor v : vertices(mesh)) {
+  for(vertex_descriptor v : vertices(mesh))
+  {
     double degree = 0.;
-    for(vertex_descriptor w : vertices_around_target(v, mesh)) {
+    for(vertex_descriptor w : vertices_around_target(v, mesh))
+    {
       A.set_coef(static_cast<int>(v), static_cast<int>(w), -t, true);
       degree += 1.;
     }
@@ -98,16 +104,19 @@ int main(int argc, char** argv)
   SP::AMG_solver_traits smoother;
   smoother.parameters().direct_solver_threshold = 0;
   double D = 1.;
-  if(!smoother.factor(A, D)) {
+  if(!smoother.factor(A, D))
+  {
     std::cerr << "The AMG setup failed" << std::endl;
     return EXIT_FAILURE;
   }
   SP::AMG_solver_traits::Vector B(n), X(n);
   double largest_move = 0.;
-  for(int coordinate = 0; coordinate < 3; ++coordinate) {
+  for(int coordinate = 0; coordinate < 3; ++coordinate)
+  {
     for(vertex_descriptor v : vertices(mesh))
       B[static_cast<int>(v)] = mesh.point(v)[coordinate];
-    if(!smoother.linear_solver(B, X)) {
+    if(!smoother.linear_solver(B, X))
+    {
       std::cerr << "The AMG solve failed" << std::endl;
       return EXIT_FAILURE;
     }

@@ -30,7 +30,8 @@ int main(int argc, char** argv)
 {
   const std::string input = (argc > 1) ? argv[1] : "data/bunny.off";
   Mesh mesh;
-  if(!CGAL::IO::read_polygon_mesh(input, mesh)) {
+  if(!CGAL::IO::read_polygon_mesh(input, mesh))
+  {
     std::cerr << "Cannot read a mesh from " << input << std::endl;
     return EXIT_FAILURE;
   }

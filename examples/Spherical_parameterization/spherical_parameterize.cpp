@@ -64,7 +64,14 @@ using Mesh = CGAL::Surface_mesh<Point>;
 
 namespace {
 
-enum Exit_code { EXIT_OK = 0, EXIT_NOT_SOLVED = 1, EXIT_BAD_INPUT = 2, EXIT_IO = 3, EXIT_USAGE = 4 };
+enum Exit_code
+{
+  EXIT_OK = 0,
+  EXIT_NOT_SOLVED = 1,
+  EXIT_BAD_INPUT = 2,
+  EXIT_IO = 3,
+  EXIT_USAGE = 4
+};
 
 const char* const synopsis = "Usage: spherical_parameterize INPUT [-o OUTPUT] [options]\n";
 
@@ -163,7 +170,10 @@ void print_usage(std::ostream& out)
 
 using Clock = std::chrono::steady_clock;
 
-double seconds_since(Clock::time_point start) { return std::chrono::duration<double>(Clock::now() - start).count(); }
+double seconds_since(Clock::time_point start)
+{
+  return std::chrono::duration<double>(Clock::now() - start).count();
+}
 
 // Stop signals (Ctrl-C's SIGINT, SIGTERM from job schedulers and `timeout`, SIGHUP) are blocked in every thread and
 // taken by one watcher thread with sigwait(), so that no library call can swallow one (METIS traps SIGTERM while it
@@ -175,22 +185,32 @@ double seconds_since(Clock::time_point start) { return std::chrono::duration<dou
 // factorization that cannot be interrupted (a least-squares step of mean-value weights: 25 s on a 164k-vertex
 // cortex), and schedulers wait little after their SIGTERM: if the library has not returned after
 // `stop_grace`, the run ends as before the iterations (nothing written, exit 128 + signal).
-enum Run_phase { SETTING_UP, ITERATING, WRITING };
+enum Run_phase
+{
+  SETTING_UP,
+  ITERATING,
+  WRITING
+};
 std::atomic<int> stop_signal{0};
 std::atomic<int> run_phase{SETTING_UP};
-std::mutex phase_mutex;  // held by the grace's end: once the writing starts, it no longer ends the run
+std::mutex phase_mutex; // held by the grace's end: once the writing starts, it no longer ends the run
 std::condition_variable phase_changed;
 constexpr std::chrono::milliseconds stop_grace(1200);
 std::mutex temporary_file_mutex;
-std::string temporary_file;  // the file being written, if any
+std::string temporary_file; // the file being written, if any
 
 const char* signal_name(int signal)
 {
-  switch(signal) {
-    case SIGINT: return "Ctrl-C";
-    case SIGTERM: return "SIGTERM";
-    case SIGHUP: return "SIGHUP";
-    default: return "signal";
+  switch(signal)
+  {
+  case SIGINT:
+    return "Ctrl-C";
+  case SIGTERM:
+    return "SIGTERM";
+  case SIGHUP:
+    return "SIGHUP";
+  default:
+    return "signal";
   }
 }
 
@@ -198,7 +218,8 @@ const char* signal_name(int signal)
 {
   {
     std::lock_guard<std::mutex> lock(temporary_file_mutex);
-    if(!temporary_file.empty()) std::remove(temporary_file.c_str());
+    if(!temporary_file.empty())
+      std::remove(temporary_file.c_str());
   }
   std::fprintf(stderr, "\n%s (%s): nothing written\n", why, signal_name(signal));
   std::_Exit(128 + signal);
@@ -218,14 +239,19 @@ void start_signal_watcher()
   struct sigaction keep = {};
   keep.sa_handler = [](int) {};
   sigemptyset(&keep.sa_mask);
-  for(int signal : {SIGINT, SIGTERM, SIGHUP}) sigaction(signal, &keep, nullptr);
+  for(int signal : {SIGINT, SIGTERM, SIGHUP})
+    sigaction(signal, &keep, nullptr);
   std::thread([stop] {
-    while(true) {
+    while(true)
+    {
       int signal = 0;
-      if(sigwait(&stop, &signal) != 0) continue;
-      if(stop_signal.load() != 0) end_now(signal, "stopped again");
+      if(sigwait(&stop, &signal) != 0)
+        continue;
+      if(stop_signal.load() != 0)
+        end_now(signal, "stopped again");
       stop_signal = signal;
-      if(run_phase.load() == SETTING_UP) end_now(signal, "interrupted before the iterations");
+      if(run_phase.load() == SETTING_UP)
+        end_now(signal, "interrupted before the iterations");
       // Its own thread, so that this one goes on waiting for a second signal.
       std::thread([signal] {
         std::unique_lock<std::mutex> lock(phase_mutex);
@@ -250,22 +276,25 @@ void start_writing_phase()
 // Nothing during the first second, so short runs stay quiet. Between two reports of the library (stage 1 of
 // a large mesh takes minutes), a thread keeps the elapsed time going on a terminal, and repeats the last line
 // every 30 seconds otherwise.
-class Progress_line {
+class Progress_line
+{
 public:
   Progress_line(bool enabled, Clock::time_point start)
-    : enabled_(enabled), terminal_(enabled && isatty(fileno(stderr))), start_(start)
+    : m_enabled(enabled), m_terminal(enabled && isatty(fileno(stderr))), m_start(start)
   {
-    if(enabled_) ticker_ = std::thread([this] { tick(); });
+    if(m_enabled)
+      m_ticker = std::thread([this] { tick(); });
   }
 
   ~Progress_line()
   {
     {
-      std::lock_guard<std::mutex> lock(mutex_);
-      stop_ = true;
+      std::lock_guard<std::mutex> lock(m_mutex);
+      m_stop = true;
     }
-    wake_.notify_one();
-    if(ticker_.joinable()) ticker_.join();
+    m_wake.notify_one();
+    if(m_ticker.joinable())
+      m_ticker.join();
   }
 
   void phase(const std::string& what) { show(what, false); }
@@ -274,7 +303,8 @@ public:
   {
     std::ostringstream line;
     line << stage_label(progress.stage);
-    if(progress.iteration > 0) line << ": iteration " << progress.iteration;
+    if(progress.iteration > 0)
+      line << ": iteration " << progress.iteration;
     line << std::setprecision(3) << ", Res " << progress.residual << ", " << progress.non_positive_faces
          << " non-positive faces";
     show(line.str(), false);
@@ -284,67 +314,82 @@ public:
   // Erases the line on a terminal before other output, and stops the updates.
   void clear()
   {
-    std::lock_guard<std::mutex> lock(mutex_);
-    current_.clear();
-    if(terminal_ && shown_) { std::cerr << "\r\033[K" << std::flush; shown_ = false; }
+    std::lock_guard<std::mutex> lock(m_mutex);
+    m_current.clear();
+    if(m_terminal && m_shown)
+    {
+      std::cerr << "\r\033[K" << std::flush;
+      m_shown = false;
+    }
   }
 
 private:
   static std::string stage_label(const std::string& stage)
   {
-    if(stage == "initial guess") return "stage 1/3, initial guess";
-    if(stage == "gauss-seidel") return "stage 2/3, projected Gauss-Seidel";
-    if(stage == "global newton" || stage == "local newton") return "stage 3/3, " + stage;
+    if(stage == "initial guess")
+      return "stage 1/3, initial guess";
+    if(stage == "gauss-seidel")
+      return "stage 2/3, projected Gauss-Seidel";
+    if(stage == "global newton" || stage == "local newton")
+      return "stage 3/3, " + stage;
     return stage;
   }
 
   // `repeat`: the ticker shows the current text again, with the time updated.
   void show(const std::string& text, bool repeat)
   {
-    if(!enabled_) return;
-    std::lock_guard<std::mutex> lock(mutex_);
-    if(!repeat) current_ = text;
-    if(current_.empty()) return;
-    const double now = seconds_since(start_);
-    if(now < 1. || now - last_ < (terminal_ ? 0.1 : 1.)) return;
-    last_ = now;
+    if(!m_enabled)
+      return;
+    std::lock_guard<std::mutex> lock(m_mutex);
+    if(!repeat)
+      m_current = text;
+    if(m_current.empty())
+      return;
+    const double now = seconds_since(m_start);
+    if(now < 1. || now - m_last < (m_terminal ? 0.1 : 1.))
+      return;
+    m_last = now;
     std::ostringstream line;
-    line << '[' << std::fixed << std::setprecision(1) << std::setw(7) << now << " s] " << current_;
+    line << '[' << std::fixed << std::setprecision(1) << std::setw(7) << now << " s] " << m_current;
     if(stop_signal.load() != 0)
       line << " (" << signal_name(stop_signal.load()) << ": stopping as soon as possible; a second signal quits)";
-    if(terminal_) {
+    if(m_terminal)
+    {
       // A line longer than the terminal would wrap, and only its last row would be rewritten.
       std::string shown = line.str();
       winsize size{};
       if(ioctl(fileno(stderr), TIOCGWINSZ, &size) == 0 && size.ws_col > 1 && shown.size() >= size.ws_col)
         shown.resize(size.ws_col - 1u);
       std::cerr << "\r\033[K" << shown << std::flush;
-      shown_ = true;
+      m_shown = true;
     }
-    else std::cerr << line.str() << '\n' << std::flush;
+    else
+      std::cerr << line.str() << '\n' << std::flush;
   }
 
   void tick()
   {
-    const double period = terminal_ ? 1. : 30.;
-    std::unique_lock<std::mutex> lock(mutex_);
-    while(!stop_) {
-      wake_.wait_for(lock, std::chrono::milliseconds(250));
-      if(stop_ || seconds_since(start_) - last_ < period) continue;
+    const double period = m_terminal ? 1. : 30.;
+    std::unique_lock<std::mutex> lock(m_mutex);
+    while(!m_stop)
+    {
+      m_wake.wait_for(lock, std::chrono::milliseconds(250));
+      if(m_stop || seconds_since(m_start) - m_last < period)
+        continue;
       lock.unlock();
       show(std::string(), true);
       lock.lock();
     }
   }
 
-  bool enabled_, terminal_;
-  Clock::time_point start_;
-  std::mutex mutex_;
-  std::condition_variable wake_;
-  std::thread ticker_;
-  std::string current_;
-  double last_ = -1.;
-  bool shown_ = false, stop_ = false;
+  bool m_enabled, m_terminal;
+  Clock::time_point m_start;
+  std::mutex m_mutex;
+  std::condition_variable m_wake;
+  std::thread m_ticker;
+  std::string m_current;
+  double m_last = -1.;
+  bool m_shown = false, m_stop = false;
 };
 
 // --- Minimal JSON output: a fixed set of keys, every figure a number, a string, a boolean or null. ---
@@ -352,16 +397,30 @@ std::string json_string(const std::string& text)
 {
   std::ostringstream out;
   out << '"';
-  for(unsigned char c : text) {
-    switch(c) {
-      case '"': out << "\\\""; break;
-      case '\\': out << "\\\\"; break;
-      case '\n': out << "\\n"; break;
-      case '\t': out << "\\t"; break;
-      case '\r': out << "\\r"; break;
-      default:
-        if(c < 0x20) out << "\\u" << std::hex << std::setw(4) << std::setfill('0') << int(c) << std::dec << std::setfill(' ');
-        else out << c;
+  for(unsigned char c : text)
+  {
+    switch(c)
+    {
+    case '"':
+      out << "\\\"";
+      break;
+    case '\\':
+      out << "\\\\";
+      break;
+    case '\n':
+      out << "\\n";
+      break;
+    case '\t':
+      out << "\\t";
+      break;
+    case '\r':
+      out << "\\r";
+      break;
+    default:
+      if(c < 0x20)
+        out << "\\u" << std::hex << std::setw(4) << std::setfill('0') << int(c) << std::dec << std::setfill(' ');
+      else
+        out << c;
     }
   }
   out << '"';
@@ -371,38 +430,46 @@ std::string json_string(const std::string& text)
 // The shortest decimal form that reads back as the same double.
 std::string json_number(double x, bool known = true)
 {
-  if(!known || !std::isfinite(x)) return "null";
+  if(!known || !std::isfinite(x))
+    return "null";
   std::string text;
-  for(int digits = 15; digits <= 17; ++digits) {
+  for(int digits = 15; digits <= 17; ++digits)
+  {
     std::ostringstream out;
     out << std::setprecision(digits) << x;
     text = out.str();
-    if(std::strtod(text.c_str(), nullptr) == x) break;
+    if(std::strtod(text.c_str(), nullptr) == x)
+      break;
   }
   return text;
 }
 
-std::string json_count(std::size_t n, bool known = true) { return known ? std::to_string(n) : "null"; }
+std::string json_count(std::size_t n, bool known = true)
+{
+  return known ? std::to_string(n) : "null";
+}
 
 // What the output file holds, and the certificate of its coordinates as written (rounded to float32 or scaled).
-struct Written_figures {
-  std::string format;            // "off", "ply", "gifti", "freesurfer"
-  std::string precision;         // "float32", "float64"
+struct Written_figures
+{
+  std::string format;    // "off", "ply", "gifti", "freesurfer"
+  std::string precision; // "float32", "float64"
   double radius = 1.;
-  bool certified = false;        // the written coordinates were certified (they differ from the certified map)
+  bool certified = false; // the written coordinates were certified (they differ from the certified map)
   std::size_t flipped_faces = 0;
   bool bijective = false;
   double total_signed_area = 0.; // of the coordinates as written, when certified
 };
 
-struct Run_figures {
-  std::string input, output;  // output empty: nothing written
+struct Run_figures
+{
+  std::string input, output; // output empty: nothing written
   Written_figures written;
   std::string weights;
   std::string criterion = "imbalance";
   double tolerance = 1e-6;
   double read_seconds = 0., map_seconds = 0., write_seconds = 0., total_seconds = 0.;
-  bool skipped = false;  // the output was already a certified answer to the same request, and was kept
+  bool skipped = false; // the output was already a certified answer to the same request, and was kept
 };
 
 // The multilevel start's levels, coarsest first: [{"vertices": .., "newton_steps": .., ...}, ...].
@@ -410,122 +477,135 @@ std::string levels_json(const SP::Result& r)
 {
   std::string text = "[";
   for(const SP::Level_statistics& level : r.levels)
-    text += std::string(text.size() > 1 ? ", " : "") + "{\"vertices\": " + std::to_string(level.vertices) +
-            ", \"newton_steps\": " + std::to_string(level.newton_steps) + ", \"linear_iterations\": " +
-            std::to_string(level.linear_iterations) + ", \"seconds\": " + json_number(level.seconds) + "}";
+    text += std::string(text.size() > 1 ? ", " : "") + "{\"vertices\": " + std::to_string(level.vertices)
+            + ", \"newton_steps\": " + std::to_string(level.newton_steps) + ", \"linear_iterations\": "
+            + std::to_string(level.linear_iterations) + ", \"seconds\": " + json_number(level.seconds) + "}";
   return text + "]";
 }
 
 // One line per run (JSON Lines), so that the figures of many runs concatenate into one table.
 void print_json(std::ostream& out, const SP::Result& r, const Run_figures& run)
 {
-  const bool computed = r.residual >= 0.;  // the iterations ran (not an input or set-up error)
-  const bool certified = computed || run.skipped;  // a kept output was certified again
+  const bool computed = r.residual >= 0.;         // the iterations ran (not an input or set-up error)
+  const bool certified = computed || run.skipped; // a kept output was certified again
   auto stage = [](const SP::Stage_statistics& s) {
-    return "{\"seconds\": " + json_number(s.seconds) + ", \"iterations\": " + json_count(s.iterations) +
-           ", \"linear_iterations\": " + json_count(s.linear_iterations) +
-           ", \"residual\": " + json_number(s.residual, s.residual >= 0.) + "}";
+    return "{\"seconds\": " + json_number(s.seconds) + ", \"iterations\": " + json_count(s.iterations)
+           + ", \"linear_iterations\": " + json_count(s.linear_iterations)
+           + ", \"residual\": " + json_number(s.residual, s.residual >= 0.) + "}";
   };
   auto boolean = [](bool b) { return std::string(b ? "true" : "false"); };
   const std::vector<std::pair<const char*, std::string>> fields = {
-    {"format", "\"spherical_parameterize/1\""},
-    {"input", json_string(run.input)},
-    {"output", run.output.empty() ? std::string("null") : json_string(run.output)},
-    {"status", json_string(SP::get_error_name(r.status))},
-    // Exactly when the exit status is 0: a map certified in double precision whose float32 (or scaled) coordinates
-    // as written fold a triangle is no success, and tables built from these lines must not count it as one.
-    {"success", boolean(r.status == SP::Error_code::OK && !(run.written.certified && !run.written.bijective))},
-    {"skipped", boolean(run.skipped)},
-    {"message", json_string(r.message)},
-    {"vertices", std::to_string(r.number_of_vertices)},
-    {"faces", std::to_string(r.number_of_faces)},
-    {"weights", json_string(run.weights)},
-    {"criterion", json_string(run.criterion)},
-    {"tolerance", json_number(run.tolerance)},
-    {"max_imbalance", json_number(r.max_imbalance, computed)},
-    {"imbalance_percentile_99", json_number(r.imbalance_percentile_99, computed)},
-    {"unbalanced_vertices", json_count(r.unbalanced_vertices, computed)},
-    {"max_stationarity", json_number(r.max_stationarity, computed && r.max_stationarity >= 0.)},
-    {"unstationary_vertices", json_count(r.unstationary_vertices, computed && r.max_stationarity >= 0.)},
-    {"vertices_at_rounding_floor", json_count(r.vertices_at_rounding_floor, computed)},
-    {"residual", json_number(r.residual, computed)},
-    {"max_tangential_residual", json_number(r.max_tangential_residual, computed)},
-    {"flipped_faces", json_count(r.flipped_faces, certified)},
-    {"total_signed_area", json_number(r.total_signed_area, certified)},
-    {"bijective", boolean(r.bijective)},
-    {"initial_flipped_faces", json_count(r.initial_flipped_faces, computed)},
-    {"uniform_initial_guess_fallback", boolean(r.uniform_initial_guess_fallback)},
-    {"admissible_weights", boolean(r.admissible_weights)},
-    {"raised_weights", std::to_string(r.raised_weights)},
-    {"clamped_weights", std::to_string(r.clamped_weights)},
-    {"rejected_moves", json_count(r.rejected_moves, computed)},
-    {"separator_size", json_count(r.separator_size, computed)},
-    {"cut_loop_length", json_count(r.cut_loop_length, computed)},
-    {"levels", levels_json(r)},
-    {"stages", "{\"initial_guess\": " + stage(r.initial_guess) + ", \"gauss_seidel\": " + stage(r.gauss_seidel) +
-                   ", \"newton\": " + stage(r.newton) + "}"},
-    {"written", run.output.empty() ? std::string("null")
-                                   : "{\"format\": " + json_string(run.written.format) + ", \"precision\": " +
-                                         json_string(run.written.precision) + ", \"radius\": " + json_number(run.written.radius) +
-                                         ", \"flipped_faces\": " + json_count(run.written.flipped_faces, run.written.certified) +
-                                         ", \"bijective\": " + (run.written.certified ? boolean(run.written.bijective) : std::string("null")) + "}"},
-    {"seconds", "{\"read\": " + json_number(run.read_seconds) + ", \"map\": " + json_number(run.map_seconds) +
-                    ", \"write\": " + json_number(run.write_seconds) + ", \"total\": " + json_number(run.total_seconds) + "}"}};
+      {"format", "\"spherical_parameterize/1\""},
+      {"input", json_string(run.input)},
+      {"output", run.output.empty() ? std::string("null") : json_string(run.output)},
+      {"status", json_string(SP::get_error_name(r.status))},
+      // Exactly when the exit status is 0: a map certified in double precision whose float32 (or scaled) coordinates
+      // as written fold a triangle is no success, and tables built from these lines must not count it as one.
+      {"success", boolean(r.status == SP::Error_code::OK && !(run.written.certified && !run.written.bijective))},
+      {"skipped", boolean(run.skipped)},
+      {"message", json_string(r.message)},
+      {"vertices", std::to_string(r.number_of_vertices)},
+      {"faces", std::to_string(r.number_of_faces)},
+      {"weights", json_string(run.weights)},
+      {"criterion", json_string(run.criterion)},
+      {"tolerance", json_number(run.tolerance)},
+      {"max_imbalance", json_number(r.max_imbalance, computed)},
+      {"imbalance_percentile_99", json_number(r.imbalance_percentile_99, computed)},
+      {"unbalanced_vertices", json_count(r.unbalanced_vertices, computed)},
+      {"max_stationarity", json_number(r.max_stationarity, computed && r.max_stationarity >= 0.)},
+      {"unstationary_vertices", json_count(r.unstationary_vertices, computed && r.max_stationarity >= 0.)},
+      {"vertices_at_rounding_floor", json_count(r.vertices_at_rounding_floor, computed)},
+      {"residual", json_number(r.residual, computed)},
+      {"max_tangential_residual", json_number(r.max_tangential_residual, computed)},
+      {"flipped_faces", json_count(r.flipped_faces, certified)},
+      {"total_signed_area", json_number(r.total_signed_area, certified)},
+      {"bijective", boolean(r.bijective)},
+      {"initial_flipped_faces", json_count(r.initial_flipped_faces, computed)},
+      {"uniform_initial_guess_fallback", boolean(r.uniform_initial_guess_fallback)},
+      {"admissible_weights", boolean(r.admissible_weights)},
+      {"raised_weights", std::to_string(r.raised_weights)},
+      {"clamped_weights", std::to_string(r.clamped_weights)},
+      {"rejected_moves", json_count(r.rejected_moves, computed)},
+      {"separator_size", json_count(r.separator_size, computed)},
+      {"cut_loop_length", json_count(r.cut_loop_length, computed)},
+      {"levels", levels_json(r)},
+      {"stages", "{\"initial_guess\": " + stage(r.initial_guess) + ", \"gauss_seidel\": " + stage(r.gauss_seidel)
+                     + ", \"newton\": " + stage(r.newton) + "}"},
+      {"written", run.output.empty()
+                      ? std::string("null")
+                      : "{\"format\": " + json_string(run.written.format) + ", \"precision\": "
+                            + json_string(run.written.precision) + ", \"radius\": " + json_number(run.written.radius)
+                            + ", \"flipped_faces\": " + json_count(run.written.flipped_faces, run.written.certified)
+                            + ", \"bijective\": "
+                            + (run.written.certified ? boolean(run.written.bijective) : std::string("null")) + "}"},
+      {"seconds", "{\"read\": " + json_number(run.read_seconds) + ", \"map\": " + json_number(run.map_seconds)
+                      + ", \"write\": " + json_number(run.write_seconds)
+                      + ", \"total\": " + json_number(run.total_seconds) + "}"}};
   std::string line = "{";
-  for(const auto& field : fields) line += (line.size() > 1 ? ", \"" : "\"") + std::string(field.first) + "\": " + field.second;
+  for(const auto& field : fields)
+    line += (line.size() > 1 ? ", \"" : "\"") + std::string(field.first) + "\": " + field.second;
   out << line << "}\n";
 }
 
-std::string plural(std::size_t n, const std::string& noun) { return std::to_string(n) + " " + noun + (n == 1 ? "" : "s"); }
+std::string plural(std::size_t n, const std::string& noun)
+{
+  return std::to_string(n) + " " + noun + (n == 1 ? "" : "s");
+}
 
 void print_text(std::ostream& out, const SP::Result& r, const Run_figures& run)
 {
-  out << "input:           " << run.input << " (" << r.number_of_vertices << " vertices, " << r.number_of_faces << " faces)\n"
+  out << "input:           " << run.input << " (" << r.number_of_vertices << " vertices, " << r.number_of_faces
+      << " faces)\n"
       << "status:          " << SP::get_error_name(r.status) << ": " << r.message << "\n";
   if(run.skipped)
     out << "kept:            " << run.output << " (" << run.written.format << ", " << run.written.precision
-        << "; certified again: " << plural(run.written.flipped_faces, "flipped face") << (run.written.bijective ? ", bijective" : "")
-        << ")\n";
-  if(r.residual < 0.) return;
-  out << std::setprecision(4)
-      << "max imbalance:   " << r.max_imbalance << " (99th percentile " << r.imbalance_percentile_99 << "; "
-      << r.unbalanced_vertices << (r.unbalanced_vertices == 1 ? " vertex" : " vertices") << " above the tolerance " << run.tolerance << ", "
+        << "; certified again: " << plural(run.written.flipped_faces, "flipped face")
+        << (run.written.bijective ? ", bijective" : "") << ")\n";
+  if(r.residual < 0.)
+    return;
+  out << std::setprecision(4) << "max imbalance:   " << r.max_imbalance << " (99th percentile "
+      << r.imbalance_percentile_99 << "; " << r.unbalanced_vertices
+      << (r.unbalanced_vertices == 1 ? " vertex" : " vertices") << " above the tolerance " << run.tolerance << ", "
       << r.vertices_at_rounding_floor << " held to their rounding floor; " << run.weights << " weights, stopping on "
       << run.criterion << ")\n"
-      << (r.max_stationarity >= 0. ? "stationarity:    " : "") ;
+      << (r.max_stationarity >= 0. ? "stationarity:    " : "");
   if(r.max_stationarity >= 0.)
-    out << r.max_stationarity << " (max; " << r.unstationary_vertices << (r.unstationary_vertices == 1 ? " vertex" : " vertices")
+    out << r.max_stationarity << " (max; " << r.unstationary_vertices
+        << (r.unstationary_vertices == 1 ? " vertex" : " vertices")
         << " above the tolerance: non-symmetric weights stop on the stationarity of their least-squares problem)\n";
   out << "Res (paper):     " << r.residual << "\n"
       << "max tangential:  " << r.max_tangential_residual << "\n"
       << "flipped faces:   " << r.flipped_faces << " (exact orientation test)\n"
-      << std::setprecision(12)
-      << "total area:      " << r.total_signed_area << " (4 pi = 12.5663706144)\n"
-      << std::setprecision(3)
-      << "stage 1:         initial guess, " << r.initial_guess.seconds << " s, Res " << r.initial_guess.residual << ", "
-      << plural(r.initial_flipped_faces, "non-positive face");
+      << std::setprecision(12) << "total area:      " << r.total_signed_area << " (4 pi = 12.5663706144)\n"
+      << std::setprecision(3) << "stage 1:         initial guess, " << r.initial_guess.seconds << " s, Res "
+      << r.initial_guess.residual << ", " << plural(r.initial_flipped_faces, "non-positive face");
   if(r.levels.empty())
-    out << ", cut loop of " << r.cut_loop_length << " vertices" << (r.uniform_initial_guess_fallback ? ", uniform-weight disks" : "");
-  else {
+    out << ", cut loop of " << r.cut_loop_length << " vertices"
+        << (r.uniform_initial_guess_fallback ? ", uniform-weight disks" : "");
+  else
+  {
     out << ", multilevel start: ";
     for(std::size_t l = 0; l < r.levels.size(); ++l)
-      out << (l > 0 ? " -> " : "") << r.levels[l].vertices << " vertices (" << plural(r.levels[l].newton_steps, "Newton step") << ", "
-          << r.levels[l].seconds << " s)";
+      out << (l > 0 ? " -> " : "") << r.levels[l].vertices << " vertices ("
+          << plural(r.levels[l].newton_steps, "Newton step") << ", " << r.levels[l].seconds << " s)";
   }
   out << "\n"
       << "stage 2:         projected Gauss-Seidel, " << r.gauss_seidel.seconds << " s, "
       << plural(r.gauss_seidel.iterations, "sweep") << ", Res " << r.gauss_seidel.residual << "\n"
       << "stage 3:         Newton, " << r.newton.seconds << " s, " << plural(r.newton.iterations, "iteration")
-      << (r.newton.linear_iterations > 0 ? " (" + plural(r.newton.linear_iterations, "MINRES iteration") + ")" : std::string())
-      << ", Res "
-      << r.newton.residual << ", " << plural(r.rejected_moves, "move") << " not taken (stages 2 and 3)\n"
+      << (r.newton.linear_iterations > 0 ? " (" + plural(r.newton.linear_iterations, "MINRES iteration") + ")"
+                                         : std::string())
+      << ", Res " << r.newton.residual << ", " << plural(r.rejected_moves, "move") << " not taken (stages 2 and 3)\n"
       << "time:            " << run.total_seconds << " s (read " << run.read_seconds << " s, map " << run.map_seconds
       << " s, write " << run.write_seconds << " s)\n";
-  if(!run.output.empty()) {
+  if(!run.output.empty())
+  {
     out << "written:         " << run.output << " (" << run.written.format << ", " << run.written.precision;
-    if(run.written.radius != 1.) out << ", radius " << run.written.radius;
+    if(run.written.radius != 1.)
+      out << ", radius " << run.written.radius;
     if(run.written.certified)
-      out << "; as written: " << plural(run.written.flipped_faces, "flipped face") << (run.written.bijective ? ", bijective" : ", NOT bijective");
+      out << "; as written: " << plural(run.written.flipped_faces, "flipped face")
+          << (run.written.bijective ? ", bijective" : ", NOT bijective");
     out << ")\n";
   }
 }
@@ -534,11 +614,14 @@ void print_text(std::ostream& out, const SP::Result& r, const Run_figures& run)
 std::size_t edit_distance(const std::string& a, const std::string& b)
 {
   std::vector<std::size_t> row(b.size() + 1);
-  for(std::size_t j = 0; j <= b.size(); ++j) row[j] = j;
-  for(std::size_t i = 1; i <= a.size(); ++i) {
+  for(std::size_t j = 0; j <= b.size(); ++j)
+    row[j] = j;
+  for(std::size_t i = 1; i <= a.size(); ++i)
+  {
     std::size_t diagonal = row[0];
     row[0] = i;
-    for(std::size_t j = 1; j <= b.size(); ++j) {
+    for(std::size_t j = 1; j <= b.size(); ++j)
+    {
       const std::size_t up = row[j];
       row[j] = (std::min)({row[j] + 1, row[j - 1] + 1, diagonal + (a[i - 1] == b[j - 1] ? 0 : 1)});
       diagonal = up;
@@ -552,9 +635,11 @@ std::string closest(const std::string& word, const std::vector<std::string>& cho
 {
   std::string best;
   std::size_t best_distance = std::max<std::size_t>(2, word.size() / 4) + 1;
-  for(const std::string& candidate : choices) {
+  for(const std::string& candidate : choices)
+  {
     const std::size_t d = edit_distance(word, candidate);
-    if(d < best_distance || (best.empty() && word.size() >= 3 && candidate.compare(0, word.size(), word) == 0)) {
+    if(d < best_distance || (best.empty() && word.size() >= 3 && candidate.compare(0, word.size(), word) == 0))
+    {
       best = candidate;
       best_distance = (std::min)(d, best_distance);
     }
@@ -565,43 +650,46 @@ std::string closest(const std::string& word, const std::vector<std::string>& cho
 [[noreturn]] void usage_error(const std::string& message, const std::string& hint = std::string())
 {
   std::cerr << "error: " << message << "\n";
-  if(!hint.empty()) std::cerr << "       " << hint << "\n";
+  if(!hint.empty())
+    std::cerr << "       " << hint << "\n";
   std::cerr << synopsis << "Try 'spherical_parameterize --help' for the options.\n";
   std::exit(EXIT_USAGE);
 }
 
-struct Option {
-  const char* short_name;  // "" if none
+struct Option
+{
+  const char* short_name; // "" if none
   const char* long_name;
-  const char* value;       // what the value is, nullptr for a flag
+  const char* value; // what the value is, nullptr for a flag
 };
 
 const Option options[] = {
-  {"-o", "--output", "a file name: .off, .ply, .gii, or a FreeSurfer surface name"},
-  {"", "--radius", "a positive number"},
-  {"", "--float64", nullptr},
-  {"", "--overwrite", nullptr},
-  {"-w", "--weights", "uniform, cotangent or mean_value"},
-  {"-t", "--tolerance", "a positive number such as 1e-6"},
-  {"", "--criterion", "imbalance or paper"},
-  {"", "--gauss-seidel-sweeps", "a number of sweeps, 0 or more"},
-  {"-s", "--solver", "global or local"},
-  {"", "--disk-solver", "amg or sparse_lu"},
-  {"", "--max-seconds", "a positive number of seconds"},
-  {"", "--seed", "an integer"},
-  {"", "--no-backtracking", nullptr},
-  {"", "--start", "multilevel or two_disks"},
-  {"", "--verbose", nullptr},
-  {"", "--admissible-weights", nullptr},
-  {"-q", "--quiet", nullptr},
-  {"", "--json", nullptr},
-  {"-h", "--help", nullptr},
+    {"-o", "--output", "a file name: .off, .ply, .gii, or a FreeSurfer surface name"},
+    {"", "--radius", "a positive number"},
+    {"", "--float64", nullptr},
+    {"", "--overwrite", nullptr},
+    {"-w", "--weights", "uniform, cotangent or mean_value"},
+    {"-t", "--tolerance", "a positive number such as 1e-6"},
+    {"", "--criterion", "imbalance or paper"},
+    {"", "--gauss-seidel-sweeps", "a number of sweeps, 0 or more"},
+    {"-s", "--solver", "global or local"},
+    {"", "--disk-solver", "amg or sparse_lu"},
+    {"", "--max-seconds", "a positive number of seconds"},
+    {"", "--seed", "an integer"},
+    {"", "--no-backtracking", nullptr},
+    {"", "--start", "multilevel or two_disks"},
+    {"", "--verbose", nullptr},
+    {"", "--admissible-weights", nullptr},
+    {"-q", "--quiet", nullptr},
+    {"", "--json", nullptr},
+    {"-h", "--help", nullptr},
 };
 
 const Option* find_option(const std::string& name)
 {
   for(const Option& o : options)
-    if(name == o.long_name || (o.short_name[0] != '\0' && name == o.short_name)) return &o;
+    if(name == o.long_name || (o.short_name[0] != '\0' && name == o.short_name))
+      return &o;
   return nullptr;
 }
 
@@ -609,10 +697,15 @@ const Option* find_option(const std::string& name)
 std::string choice(const std::string& option, const std::string& value, const std::vector<std::string>& names,
                    const std::vector<std::string>& aliases = {})
 {
-  for(const std::string& n : names) if(value == n) return n;
-  for(std::size_t i = 0; i + 1 < aliases.size(); i += 2) if(value == aliases[i]) return aliases[i + 1];
+  for(const std::string& n : names)
+    if(value == n)
+      return n;
+  for(std::size_t i = 0; i + 1 < aliases.size(); i += 2)
+    if(value == aliases[i])
+      return aliases[i + 1];
   std::string list;
-  for(const std::string& n : names) list += (list.empty() ? "" : ", ") + n;
+  for(const std::string& n : names)
+    list += (list.empty() ? "" : ", ") + n;
   const std::string guess = closest(value, names);
   usage_error("unknown value '" + value + "' for " + option + " (one of: " + list + ")",
               guess.empty() ? std::string() : "did you mean '" + guess + "'?");
@@ -646,16 +739,17 @@ bool ends_with(const std::string& s, const std::string& suffix)
   return s.size() >= suffix.size() && s.compare(s.size() - suffix.size(), suffix.size(), suffix) == 0;
 }
 
-struct Settings {
+struct Settings
+{
   std::string input, output;
   std::string weights_name = "uniform";
   SP::Weighting weighting = SP::Weighting::UNIFORM;
   double tolerance = 1e-6, max_seconds = -1.;
   std::string criterion = "imbalance";
-  long gauss_seidel_sweeps = -1;  // -1: the library's default
+  long gauss_seidel_sweeps = -1; // -1: the library's default
   int seed = 0;
   bool quiet = false, json = false, backtracking = true, sparse_lu = false, admissible = false, float64 = false;
-  bool overwrite = false;  // map again even when the output is already a certified answer to the same request
+  bool overwrite = false; // map again even when the output is already a certified answer to the same request
   bool multilevel = true, verbose = false;
   double radius = 1.;
   SP::Nonlinear_solver solver = SP::Nonlinear_solver::GLOBAL_NEWTON;
@@ -665,55 +759,81 @@ Settings parse_arguments(int argc, char** argv)
 {
   Settings settings;
   std::vector<std::string> given;
-  bool only_files = false;  // after "--"
-  for(int a = 1; a < argc; ++a) {
+  bool only_files = false; // after "--"
+  for(int a = 1; a < argc; ++a)
+  {
     const std::string arg = argv[a];
-    if(only_files || arg.empty() || arg[0] != '-' || arg == "-") {
-      if(settings.input.empty()) settings.input = arg;
-      else usage_error("more than one input file ('" + settings.input + "', '" + arg + "')",
-                       "one mesh per run; the output is set with -o FILE");
+    if(only_files || arg.empty() || arg[0] != '-' || arg == "-")
+    {
+      if(settings.input.empty())
+        settings.input = arg;
+      else
+        usage_error("more than one input file ('" + settings.input + "', '" + arg + "')",
+                    "one mesh per run; the output is set with -o FILE");
       continue;
     }
-    if(arg == "--") { only_files = true; continue; }
+    if(arg == "--")
+    {
+      only_files = true;
+      continue;
+    }
 
     // --name=value
     std::string name = arg, attached;
     bool has_attached = false;
     const std::size_t equal = arg.find('=');
-    if(arg.compare(0, 2, "--") == 0 && equal != std::string::npos) {
+    if(arg.compare(0, 2, "--") == 0 && equal != std::string::npos)
+    {
       name = arg.substr(0, equal);
       attached = arg.substr(equal + 1);
       has_attached = true;
     }
     const Option* option = find_option(name);
-    if(option == nullptr) {
+    if(option == nullptr)
+    {
       std::vector<std::string> names;
-      for(const Option& o : options) names.push_back(o.long_name);
+      for(const Option& o : options)
+        names.push_back(o.long_name);
       // "-tolerance" for "--tolerance", or a typo
-      std::string guess = (name.size() > 2 && name[1] != '-' && find_option("-" + name)) ? "-" + name : closest(name, names);
+      std::string guess =
+          (name.size() > 2 && name[1] != '-' && find_option("-" + name)) ? "-" + name : closest(name, names);
       usage_error("unknown option '" + name + "'", guess.empty() ? std::string() : "did you mean '" + guess + "'?");
     }
     const std::string canonical = option->long_name;
-    if(std::find(given.begin(), given.end(), canonical) != given.end() && canonical != "--quiet" && canonical != "--json")
+    if(std::find(given.begin(), given.end(), canonical) != given.end() && canonical != "--quiet"
+       && canonical != "--json")
       std::cerr << "warning: " << canonical << " is given more than once; the last one counts\n";
     given.push_back(canonical);
 
     std::string value;
-    if(option->value == nullptr) {
-      if(has_attached) usage_error(canonical + " takes no value, got '" + attached + "'");
-    } else if(has_attached) {
+    if(option->value == nullptr)
+    {
+      if(has_attached)
+        usage_error(canonical + " takes no value, got '" + attached + "'");
+    }
+    else if(has_attached)
+    {
       value = attached;
-    } else {
-      if(a + 1 >= argc) usage_error(name + " needs a value: " + option->value);
+    }
+    else
+    {
+      if(a + 1 >= argc)
+        usage_error(name + " needs a value: " + option->value);
       value = argv[++a];
       // "-o -q": the value is missing, not a file named "-q".
       if(value.size() > 1 && value[0] == '-' && find_option(value.substr(0, value.find('='))) != nullptr)
         usage_error(name + " needs a value (" + option->value + "), got the option '" + value + "'");
     }
-    if(option->value != nullptr && value.empty()) usage_error(name + " needs a value: " + option->value);
+    if(option->value != nullptr && value.empty())
+      usage_error(name + " needs a value: " + option->value);
 
-    if(canonical == "--help") { print_usage(std::cout); std::exit(EXIT_OK); }
-    else if(canonical == "--output") {
+    if(canonical == "--help")
+    {
+      print_usage(std::cout);
+      std::exit(EXIT_OK);
+    }
+    else if(canonical == "--output")
+    {
       if(ends_with(value, ".obj") || ends_with(value, ".stl") || ends_with(value, ".gz"))
         usage_error("cannot write '" + value + "': the output is .off, .ply, .gii or a FreeSurfer surface");
 #ifndef CGAL_SPHERICAL_PARAMETERIZATION_USE_GIFTI
@@ -722,35 +842,55 @@ Settings parse_arguments(int argc, char** argv)
 #endif
       settings.output = value;
     }
-    else if(canonical == "--weights") {
-      settings.weights_name = choice(canonical, value, {"uniform", "cotangent", "mean_value"},
-                                     {"tutte", "uniform", "conformal", "cotangent", "mean-value", "mean_value", "mvc", "mean_value"});
-      settings.weighting = settings.weights_name == "uniform" ? SP::Weighting::UNIFORM
-                         : settings.weights_name == "cotangent" ? SP::Weighting::COTANGENT : SP::Weighting::MEAN_VALUE;
+    else if(canonical == "--weights")
+    {
+      settings.weights_name =
+          choice(canonical, value, {"uniform", "cotangent", "mean_value"},
+                 {"tutte", "uniform", "conformal", "cotangent", "mean-value", "mean_value", "mvc", "mean_value"});
+      settings.weighting = settings.weights_name == "uniform"     ? SP::Weighting::UNIFORM
+                           : settings.weights_name == "cotangent" ? SP::Weighting::COTANGENT
+                                                                  : SP::Weighting::MEAN_VALUE;
     }
-    else if(canonical == "--tolerance") settings.tolerance = positive_number(name, value);
-    else if(canonical == "--gauss-seidel-sweeps") {
+    else if(canonical == "--tolerance")
+      settings.tolerance = positive_number(name, value);
+    else if(canonical == "--gauss-seidel-sweeps")
+    {
       settings.gauss_seidel_sweeps = integer(name, value);
-      if(settings.gauss_seidel_sweeps < 0) usage_error(name + " needs a number of sweeps, 0 or more");
+      if(settings.gauss_seidel_sweeps < 0)
+        usage_error(name + " needs a number of sweeps, 0 or more");
     }
-    else if(canonical == "--criterion") settings.criterion = choice(canonical, value, {"imbalance", "paper"});
-    else if(canonical == "--max-seconds") settings.max_seconds = positive_number(name, value);
-    else if(canonical == "--seed") settings.seed = integer(name, value);
+    else if(canonical == "--criterion")
+      settings.criterion = choice(canonical, value, {"imbalance", "paper"});
+    else if(canonical == "--max-seconds")
+      settings.max_seconds = positive_number(name, value);
+    else if(canonical == "--seed")
+      settings.seed = integer(name, value);
     else if(canonical == "--solver")
       settings.solver = choice(canonical, value, {"global", "local"}) == "local" ? SP::Nonlinear_solver::LOCAL_NEWTON
-                                                                              : SP::Nonlinear_solver::GLOBAL_NEWTON;
-    else if(canonical == "--disk-solver") settings.sparse_lu = choice(canonical, value, {"amg", "sparse_lu"}) == "sparse_lu";
-    else if(canonical == "--no-backtracking") settings.backtracking = false;
-    else if(canonical == "--start") settings.multilevel = choice(canonical, value, {"multilevel", "two_disks"}) == "multilevel";
-    else if(canonical == "--verbose") settings.verbose = true;
-    else if(canonical == "--radius") settings.radius = positive_number(name, value);
-    else if(canonical == "--float64") settings.float64 = true;
-    else if(canonical == "--overwrite") settings.overwrite = true;
-    else if(canonical == "--admissible-weights") settings.admissible = true;
-    else if(canonical == "--quiet") settings.quiet = true;
-    else if(canonical == "--json") settings.json = true;
+                                                                                 : SP::Nonlinear_solver::GLOBAL_NEWTON;
+    else if(canonical == "--disk-solver")
+      settings.sparse_lu = choice(canonical, value, {"amg", "sparse_lu"}) == "sparse_lu";
+    else if(canonical == "--no-backtracking")
+      settings.backtracking = false;
+    else if(canonical == "--start")
+      settings.multilevel = choice(canonical, value, {"multilevel", "two_disks"}) == "multilevel";
+    else if(canonical == "--verbose")
+      settings.verbose = true;
+    else if(canonical == "--radius")
+      settings.radius = positive_number(name, value);
+    else if(canonical == "--float64")
+      settings.float64 = true;
+    else if(canonical == "--overwrite")
+      settings.overwrite = true;
+    else if(canonical == "--admissible-weights")
+      settings.admissible = true;
+    else if(canonical == "--quiet")
+      settings.quiet = true;
+    else if(canonical == "--json")
+      settings.json = true;
   }
-  if(settings.input.empty()) usage_error("no input mesh given");
+  if(settings.input.empty())
+    usage_error("no input mesh given");
   return settings;
 }
 
@@ -760,15 +900,18 @@ void explain_missing_input(const std::string& input)
   namespace fs = std::filesystem;
   std::error_code error;
   const fs::path path(input);
-  if(fs::is_directory(path, error)) {
+  if(fs::is_directory(path, error))
+  {
     std::cerr << "error: '" << input << "' is a folder, not a mesh file [CANNOT_OPEN]\n";
     std::exit(EXIT_IO);
   }
-  if(fs::exists(path, error)) return;
+  if(fs::exists(path, error))
+    return;
   const fs::path folder = path.has_parent_path() ? path.parent_path() : fs::path(".");
   std::vector<std::string> names;
   for(fs::directory_iterator it(folder, error), end; !error && it != end; it.increment(error))
-    if(it->is_regular_file(error)) names.push_back(it->path().filename().string());
+    if(it->is_regular_file(error))
+      names.push_back(it->path().filename().string());
   const std::string guess = closest(path.filename().string(), names);
   std::cerr << "error: no such file: '" << input << "' [CANNOT_OPEN]\n";
   if(!guess.empty())
@@ -787,21 +930,29 @@ bool is_FreeSurfer_file(const std::string& path)
 
 std::string output_format(const std::string& path)
 {
-  if(ends_with(path, ".off")) return "off";
-  if(ends_with(path, ".ply")) return "ply";
-  if(ends_with(path, ".gii")) return "gifti";
+  if(ends_with(path, ".off"))
+    return "off";
+  if(ends_with(path, ".ply"))
+    return "ply";
+  if(ends_with(path, ".gii"))
+    return "gifti";
   return "freesurfer";
 }
 
 std::string default_output(std::string input)
 {
-  if(is_FreeSurfer_file(input)) return input + ".sphere";  // lh.white -> lh.white.sphere, in FreeSurfer's format
-  if(ends_with(input, ".surf.gii")) return input.substr(0, input.size() - 9) + "_sphere.surf.gii";
-  if(ends_with(input, ".gii")) return input.substr(0, input.size() - 4) + "_sphere.surf.gii";
-  if(input.size() > 3 && input.compare(input.size() - 3, 3, ".gz") == 0) input.resize(input.size() - 3);  // mesh.off.gz
+  if(is_FreeSurfer_file(input))
+    return input + ".sphere"; // lh.white -> lh.white.sphere, in FreeSurfer's format
+  if(ends_with(input, ".surf.gii"))
+    return input.substr(0, input.size() - 9) + "_sphere.surf.gii";
+  if(ends_with(input, ".gii"))
+    return input.substr(0, input.size() - 4) + "_sphere.surf.gii";
+  if(input.size() > 3 && input.compare(input.size() - 3, 3, ".gz") == 0)
+    input.resize(input.size() - 3); // mesh.off.gz
   const std::size_t slash = input.find_last_of('/');
   const std::size_t dot = input.find_last_of('.');
-  const std::string stem = (dot != std::string::npos && (slash == std::string::npos || dot > slash)) ? input.substr(0, dot) : input;
+  const std::string stem =
+      (dot != std::string::npos && (slash == std::string::npos || dot > slash)) ? input.substr(0, dot) : input;
   return stem + "_sphere.off";
 }
 
@@ -811,15 +962,18 @@ bool can_write_next_to(const std::string& path, std::string& error)
   const std::size_t slash = path.find_last_of('/');
   const std::string folder = slash == std::string::npos ? "." : (slash == 0 ? "/" : path.substr(0, slash));
   struct stat info;
-  if(::stat(folder.c_str(), &info) != 0 || !S_ISDIR(info.st_mode)) {
+  if(::stat(folder.c_str(), &info) != 0 || !S_ISDIR(info.st_mode))
+  {
     error = "cannot write '" + path + "': the folder '" + folder + "' does not exist";
     return false;
   }
-  if(::access(folder.c_str(), W_OK) != 0) {
+  if(::access(folder.c_str(), W_OK) != 0)
+  {
     error = "cannot write '" + path + "': the folder '" + folder + "' is not writable";
     return false;
   }
-  if(::stat(path.c_str(), &info) == 0 && S_ISDIR(info.st_mode)) {
+  if(::stat(path.c_str(), &info) == 0 && S_ISDIR(info.st_mode))
+  {
     error = "cannot write '" + path + "': it is a folder";
     return false;
   }
@@ -837,12 +991,16 @@ Written_figures certify_as_written(const Mesh& mesh, const std::vector<Point>& s
   written.radius = settings.radius;
   const bool float32 = format == "freesurfer" || (format == "gifti" && !settings.float64);
   written.precision = float32 ? "float32" : "float64";
-  if(!float32 && settings.radius == 1.) return written;  // exactly the certified coordinates
-  auto as_written = [&](double c) { return float32 ? double(static_cast<float>(settings.radius * c)) : settings.radius * c; };
+  if(!float32 && settings.radius == 1.)
+    return written; // exactly the certified coordinates
+  auto as_written = [&](double c) {
+    return float32 ? double(static_cast<float>(settings.radius * c)) : settings.radius * c;
+  };
   std::vector<Point> stored(sphere.size());
-  for(std::size_t i = 0; i < sphere.size(); ++i) stored[i] = Point(as_written(sphere[i].x()), as_written(sphere[i].y()), as_written(sphere[i].z()));
-  const SP::Sphere_map_certificate certificate = SP::certify_sphere_map(
-      mesh, boost::make_iterator_property_map(stored.begin(), get(CGAL::vertex_index, mesh)));
+  for(std::size_t i = 0; i < sphere.size(); ++i)
+    stored[i] = Point(as_written(sphere[i].x()), as_written(sphere[i].y()), as_written(sphere[i].z()));
+  const SP::Sphere_map_certificate certificate =
+      SP::certify_sphere_map(mesh, boost::make_iterator_property_map(stored.begin(), get(CGAL::vertex_index, mesh)));
   written.certified = true;
   written.flipped_faces = certificate.flipped_faces;
   written.bijective = certificate.bijective;
@@ -850,10 +1008,12 @@ Written_figures certify_as_written(const Mesh& mesh, const std::vector<Point>& s
 }
 
 // A polygon soup from any of the formats: FreeSurfer surfaces by their first bytes, GIfTI by the name .gii.
-SP::IO::File_read read_input(const std::string& path, std::vector<Point>& points, std::vector<std::vector<std::size_t>>& faces,
+SP::IO::File_read read_input(const std::string& path, std::vector<Point>& points,
+                             std::vector<std::vector<std::size_t>>& faces,
                              SP::IO::FreeSurfer_surface_info& freesurfer_info)
 {
-  if(ends_with(path, ".gii")) {
+  if(ends_with(path, ".gii"))
+  {
 #ifdef CGAL_SPHERICAL_PARAMETERIZATION_USE_GIFTI
     return SP::IO::read_GIfTI_surface(path, points, faces);
 #else
@@ -861,7 +1021,8 @@ SP::IO::File_read read_input(const std::string& path, std::vector<Point>& points
                                         path + ": this program was built without the GIFTI library (libgiftiio-dev)");
 #endif
   }
-  if(is_FreeSurfer_file(path)) return SP::IO::read_FreeSurfer_surface(path, points, faces, &freesurfer_info);
+  if(is_FreeSurfer_file(path))
+    return SP::IO::read_FreeSurfer_surface(path, points, faces, &freesurfer_info);
   return SP::IO::read_polygon_soup(path, points, faces);
 }
 
@@ -871,7 +1032,8 @@ SP::IO::File_read read_input(const std::string& path, std::vector<Point>& points
 // only what is missing or unfinished (a stopped run writes its best map with a status other than OK).
 const std::string stamp_tag = "spherical_parameterize/1";
 
-struct Run_stamp {
+struct Run_stamp
+{
   std::string status, weights, criterion, precision, input;
   bool admissible = false;
   double tolerance = 0., radius = 1.;
@@ -882,23 +1044,27 @@ std::string input_fingerprint(const std::vector<Point>& points, const std::vecto
 {
   std::uint64_t hash = 14695981039346656037ull;
   auto add = [&hash](std::uint64_t value) {
-    for(int byte = 0; byte < 8; ++byte) {
+    for(int byte = 0; byte < 8; ++byte)
+    {
       hash ^= (value >> (8 * byte)) & 0xFF;
       hash *= 1099511628211ull;
     }
   };
   add(points.size());
   for(const Point& p : points)
-    for(int k = 0; k < 3; ++k) {
+    for(int k = 0; k < 3; ++k)
+    {
       const double c = p[k];
       std::uint64_t bits;
       std::memcpy(&bits, &c, 8);
       add(bits);
     }
   add(faces.size());
-  for(const auto& f : faces) {
+  for(const auto& f : faces)
+  {
     add(f.size());
-    for(std::size_t i : f) add(i);
+    for(std::size_t i : f)
+      add(i);
   }
   std::ostringstream text;
   text << std::hex << std::setw(16) << std::setfill('0') << hash;
@@ -908,10 +1074,12 @@ std::string input_fingerprint(const std::vector<Point>& points, const std::vecto
 // The shortest decimal form that reads back as the same double (1e-06, not 9.9999999999999995e-07).
 std::string round_trip(double x)
 {
-  for(int digits = 6;; ++digits) {  // from 6: 100, not 1e+02
+  for(int digits = 6;; ++digits)
+  { // from 6: 100, not 1e+02
     std::ostringstream text;
     text << std::setprecision(digits) << x;
-    if(digits >= 17 || std::strtod(text.str().c_str(), nullptr) == x) return text.str();
+    if(digits >= 17 || std::strtod(text.str().c_str(), nullptr) == x)
+      return text.str();
   }
 }
 
@@ -919,8 +1087,9 @@ std::string format_stamp(const Run_stamp& stamp)
 {
   std::ostringstream line;
   line << stamp_tag << " status=" << stamp.status << " weights=" << stamp.weights
-       << " admissible=" << (stamp.admissible ? "yes" : "no") << " criterion=" << stamp.criterion << " tolerance=" << round_trip(stamp.tolerance)
-       << " precision=" << stamp.precision << " radius=" << round_trip(stamp.radius) << " input=" << stamp.input;
+       << " admissible=" << (stamp.admissible ? "yes" : "no") << " criterion=" << stamp.criterion
+       << " tolerance=" << round_trip(stamp.tolerance) << " precision=" << stamp.precision
+       << " radius=" << round_trip(stamp.radius) << " input=" << stamp.input;
   return line.str();
 }
 
@@ -928,24 +1097,36 @@ std::string format_stamp(const Run_stamp& stamp)
 bool parse_stamp(const std::string& text, Run_stamp& stamp)
 {
   const std::size_t at = text.find(stamp_tag + " ");
-  if(at == std::string::npos) return false;
+  if(at == std::string::npos)
+    return false;
   std::istringstream fields(text.substr(at + stamp_tag.size()));
   std::string field;
   int found = 0;
-  while(fields >> field) {
+  while(fields >> field)
+  {
     const std::size_t equal = field.find('=');
-    if(equal == std::string::npos) continue;
+    if(equal == std::string::npos)
+      continue;
     const std::string key = field.substr(0, equal), value = field.substr(equal + 1);
     char* end = nullptr;
-    if(key == "status") stamp.status = value;
-    else if(key == "weights") stamp.weights = value;
-    else if(key == "criterion") stamp.criterion = value;
-    else if(key == "precision") stamp.precision = value;
-    else if(key == "input") stamp.input = value;
-    else if(key == "admissible") stamp.admissible = value == "yes";
-    else if(key == "tolerance") stamp.tolerance = std::strtod(value.c_str(), &end);
-    else if(key == "radius") stamp.radius = std::strtod(value.c_str(), &end);
-    else continue;
+    if(key == "status")
+      stamp.status = value;
+    else if(key == "weights")
+      stamp.weights = value;
+    else if(key == "criterion")
+      stamp.criterion = value;
+    else if(key == "precision")
+      stamp.precision = value;
+    else if(key == "input")
+      stamp.input = value;
+    else if(key == "admissible")
+      stamp.admissible = value == "yes";
+    else if(key == "tolerance")
+      stamp.tolerance = std::strtod(value.c_str(), &end);
+    else if(key == "radius")
+      stamp.radius = std::strtod(value.c_str(), &end);
+    else
+      continue;
     ++found;
   }
   return found == 8;
@@ -962,19 +1143,23 @@ SP::IO::File_read read_existing_output(const std::string& path, std::vector<Poin
 {
   stamp_line.clear();
   const std::string format = output_format(path);
-  if(format == "gifti") {
+  if(format == "gifti")
+  {
 #ifdef CGAL_SPHERICAL_PARAMETERIZATION_USE_GIFTI
     std::vector<std::pair<std::string, std::string>> metadata;
     const SP::IO::File_read read = SP::IO::read_GIfTI_surface(path, points, faces, &metadata);
     for(const auto& entry : metadata)
-      if(entry.first == "spherical_parameterize") stamp_line = entry.second;
+      if(entry.first == "spherical_parameterize")
+        stamp_line = entry.second;
     return read;
 #else
     return SP::IO::internal::file_error(SP::IO::File_status::UNKNOWN_FORMAT, "built without the GIFTI library");
 #endif
   }
-  if(format == "freesurfer") {
-    if(!is_FreeSurfer_file(path)) return SP::IO::internal::file_error(SP::IO::File_status::INVALID_DATA, "not a FreeSurfer surface");
+  if(format == "freesurfer")
+  {
+    if(!is_FreeSurfer_file(path))
+      return SP::IO::internal::file_error(SP::IO::File_status::INVALID_DATA, "not a FreeSurfer surface");
     SP::IO::FreeSurfer_surface_info info;
     const SP::IO::File_read read = SP::IO::read_FreeSurfer_surface(path, points, faces, &info);
     stamp_line = info.created_by;
@@ -983,9 +1168,15 @@ SP::IO::File_read read_existing_output(const std::string& path, std::vector<Poin
   // OFF and PLY: the stamp is a comment line of the header.
   std::ifstream in(path);
   std::string line;
-  for(int k = 0; k < 16 && std::getline(in, line); ++k) {
-    if(line.find(stamp_tag) != std::string::npos) { stamp_line = line; break; }
-    if(line == "end_header") break;
+  for(int k = 0; k < 16 && std::getline(in, line); ++k)
+  {
+    if(line.find(stamp_tag) != std::string::npos)
+    {
+      stamp_line = line;
+      break;
+    }
+    if(line == "end_header")
+      break;
   }
   return SP::IO::read_polygon_soup(path, points, faces);
 }
@@ -993,24 +1184,32 @@ SP::IO::File_read read_existing_output(const std::string& path, std::vector<Poin
 // Why the existing `output` is not kept; empty when it is: it holds the stamp of a successful run with the same
 // weights, criterion, precision and radius and a tolerance at least as tight, made from this very input, the input's
 // vertices and faces, and coordinates that pass the certificate (exact orientations, degree 1) as they are stored.
-std::string reason_not_to_keep(const std::string& output, const Mesh& mesh, const std::vector<std::vector<std::size_t>>& faces,
-                               const std::string& fingerprint, const Settings& settings, Written_figures& kept)
+std::string reason_not_to_keep(const std::string& output, const Mesh& mesh,
+                               const std::vector<std::vector<std::size_t>>& faces, const std::string& fingerprint,
+                               const Settings& settings, Written_figures& kept)
 {
   std::vector<Point> stored;
   std::vector<std::vector<std::size_t>> stored_faces;
   std::string stamp_line;
-  if(!read_existing_output(output, stored, stored_faces, stamp_line)) return "it cannot be read as a mesh";
+  if(!read_existing_output(output, stored, stored_faces, stamp_line))
+    return "it cannot be read as a mesh";
   Run_stamp stamp;
-  if(!parse_stamp(stamp_line, stamp)) return "it was not written by this program";
-  if(stamp.status != "OK") return "the run that wrote it ended with " + stamp.status;
+  if(!parse_stamp(stamp_line, stamp))
+    return "it was not written by this program";
+  if(stamp.status != "OK")
+    return "the run that wrote it ended with " + stamp.status;
   const std::string format = output_format(output);
-  if(stamp.weights != settings.weights_name || stamp.admissible != settings.admissible || stamp.criterion != settings.criterion ||
-     !(stamp.tolerance <= settings.tolerance) || stamp.radius != settings.radius || stamp.precision != output_precision(format, settings))
-    return "it was made with other settings (" + stamp_line.substr(stamp_line.find(stamp_tag) + stamp_tag.size() + 1) + ")";
-  if(stamp.input != fingerprint) return "it was made from another input (or the input changed)";
-  if(stored.size() != num_vertices(mesh) || stored_faces != faces) return "its vertices or faces are not the input's";
-  const SP::Sphere_map_certificate certificate = SP::certify_sphere_map(
-      mesh, boost::make_iterator_property_map(stored.begin(), get(CGAL::vertex_index, mesh)));
+  if(stamp.weights != settings.weights_name || stamp.admissible != settings.admissible
+     || stamp.criterion != settings.criterion || !(stamp.tolerance <= settings.tolerance)
+     || stamp.radius != settings.radius || stamp.precision != output_precision(format, settings))
+    return "it was made with other settings (" + stamp_line.substr(stamp_line.find(stamp_tag) + stamp_tag.size() + 1)
+           + ")";
+  if(stamp.input != fingerprint)
+    return "it was made from another input (or the input changed)";
+  if(stored.size() != num_vertices(mesh) || stored_faces != faces)
+    return "its vertices or faces are not the input's";
+  const SP::Sphere_map_certificate certificate =
+      SP::certify_sphere_map(mesh, boost::make_iterator_property_map(stored.begin(), get(CGAL::vertex_index, mesh)));
   if(!certificate.bijective)
     return "its coordinates fail the certificate (" + plural(certificate.flipped_faces, "flipped face") + ")";
   kept.format = format;
@@ -1024,16 +1223,18 @@ std::string reason_not_to_keep(const std::string& output, const Mesh& mesh, cons
 }
 
 // Writes to a temporary file next to `path`, then renames it: a failure never leaves a half-written file.
-bool write_sphere(const std::string& path, const std::vector<Point>& sphere, const std::vector<std::vector<std::size_t>>& faces,
-                  const SP::IO::FreeSurfer_surface_info& freesurfer_info, const Settings& settings, const std::string& stamp,
-                  std::string& error)
+bool write_sphere(const std::string& path, const std::vector<Point>& sphere,
+                  const std::vector<std::vector<std::size_t>>& faces,
+                  const SP::IO::FreeSurfer_surface_info& freesurfer_info, const Settings& settings,
+                  const std::string& stamp, std::string& error)
 {
   const std::string temporary = path + ".partial." + std::to_string(::getpid());
   {
     std::lock_guard<std::mutex> lock(temporary_file_mutex);
     temporary_file = temporary;
   }
-  struct Forget_temporary {
+  struct Forget_temporary
+  {
     ~Forget_temporary()
     {
       std::lock_guard<std::mutex> lock(temporary_file_mutex);
@@ -1041,9 +1242,12 @@ bool write_sphere(const std::string& path, const std::vector<Point>& sphere, con
     }
   } forget_temporary;
   const std::string format = output_format(path);
-  if(format == "gifti") {
+  if(format == "gifti")
+  {
 #ifdef CGAL_SPHERICAL_PARAMETERIZATION_USE_GIFTI
-    if(!SP::IO::write_GIfTI_surface(temporary, sphere, faces, settings.float64, settings.radius, error, {{"spherical_parameterize", stamp}})) {
+    if(!SP::IO::write_GIfTI_surface(temporary, sphere, faces, settings.float64, settings.radius, error,
+                                    {{"spherical_parameterize", stamp}}))
+    {
       std::remove(temporary.c_str());
       return false;
     }
@@ -1051,22 +1255,44 @@ bool write_sphere(const std::string& path, const std::vector<Point>& sphere, con
     error = "this program was built without the GIFTI library";
     return false;
 #endif
-  } else if(format == "freesurfer") {
+  }
+  else if(format == "freesurfer")
+  {
     std::ofstream out(temporary, std::ios::binary);
-    if(!out) { error = "cannot open '" + temporary + "' for writing"; return false; }
-    SP::IO::FreeSurfer_surface_info info = freesurfer_info;  // the input's tags (volume geometry) go on
+    if(!out)
+    {
+      error = "cannot open '" + temporary + "' for writing";
+      return false;
+    }
+    SP::IO::FreeSurfer_surface_info info = freesurfer_info; // the input's tags (volume geometry) go on
     info.created_by = "created by " + stamp;
     const bool written = SP::IO::write_FreeSurfer_surface(out, sphere, faces, info, settings.radius);
     out.flush();
-    if(!written || !out) { error = "writing '" + temporary + "' failed"; std::remove(temporary.c_str()); return false; }
-  } else {
+    if(!written || !out)
+    {
+      error = "writing '" + temporary + "' failed";
+      std::remove(temporary.c_str());
+      return false;
+    }
+  }
+  else
+  {
     std::ofstream out(temporary);
-    if(!out) { error = "cannot open '" + temporary + "' for writing"; return false; }
+    if(!out)
+    {
+      error = "cannot open '" + temporary + "' for writing";
+      return false;
+    }
     out << std::setprecision(17);
-    if(format == "ply") {
-      out << "ply\nformat ascii 1.0\ncomment " << stamp << "\nelement vertex " << sphere.size() << "\nproperty double x\nproperty double y\n"
-          << "property double z\nelement face " << faces.size() << "\nproperty list uchar int vertex_indices\nend_header\n";
-    } else {
+    if(format == "ply")
+    {
+      out << "ply\nformat ascii 1.0\ncomment " << stamp << "\nelement vertex " << sphere.size()
+          << "\nproperty double x\nproperty double y\n"
+          << "property double z\nelement face " << faces.size()
+          << "\nproperty list uchar int vertex_indices\nend_header\n";
+    }
+    else
+    {
       out << "OFF\n# " << stamp << "\n" << sphere.size() << ' ' << faces.size() << " 0\n";
     }
     // std::to_chars writes what `out << std::setprecision(17)` writes (%.17g), several times faster (a third of
@@ -1079,7 +1305,8 @@ bool write_sphere(const std::string& path, const std::vector<Point>& sphere, con
       const std::to_chars_result written = std::to_chars(buffer, buffer + sizeof(buffer), value, format...);
       text.append(buffer, written.ptr);
     };
-    for(const Point& p : sphere) {
+    for(const Point& p : sphere)
+    {
       append_number(r * p.x(), std::chars_format::general, 17);
       text += ' ';
       append_number(r * p.y(), std::chars_format::general, 17);
@@ -1087,9 +1314,11 @@ bool write_sphere(const std::string& path, const std::vector<Point>& sphere, con
       append_number(r * p.z(), std::chars_format::general, 17);
       text += '\n';
     }
-    for(const auto& f : faces) {
+    for(const auto& f : faces)
+    {
       append_number(f.size());
-      for(std::size_t i : f) {
+      for(std::size_t i : f)
+      {
         text += ' ';
         append_number(i);
       }
@@ -1097,9 +1326,15 @@ bool write_sphere(const std::string& path, const std::vector<Point>& sphere, con
     }
     out.write(text.data(), static_cast<std::streamsize>(text.size()));
     out.flush();
-    if(!out) { error = "writing '" + temporary + "' failed"; std::remove(temporary.c_str()); return false; }
+    if(!out)
+    {
+      error = "writing '" + temporary + "' failed";
+      std::remove(temporary.c_str());
+      return false;
+    }
   }
-  if(std::rename(temporary.c_str(), path.c_str()) != 0) {
+  if(std::rename(temporary.c_str(), path.c_str()) != 0)
+  {
     error = "cannot move '" + temporary + "' to '" + path + "'";
     std::remove(temporary.c_str());
     return false;
@@ -1112,7 +1347,7 @@ bool write_sphere(const std::string& path, const std::vector<Point>& sphere, con
 int main(int argc, char** argv)
 {
   const Clock::time_point start = Clock::now();
-  start_signal_watcher();  // first: before any other thread exists
+  start_signal_watcher(); // first: before any other thread exists
   const Settings settings = parse_arguments(argc, argv);
   const std::string& input = settings.input;
   const std::string output = settings.output.empty() ? default_output(input) : settings.output;
@@ -1131,15 +1366,20 @@ int main(int argc, char** argv)
 
   // An output that cannot be written is found before the work, not after it.
   std::string output_error;
-  if(!can_write_next_to(output, output_error)) { std::cerr << "error: " << output_error << "\n"; return EXIT_IO; }
+  if(!can_write_next_to(output, output_error))
+  {
+    std::cerr << "error: " << output_error << "\n";
+    return EXIT_IO;
+  }
 
   // Read as a polygon soup first: a soup can hold what a halfedge structure refuses, so the error is precise.
   progress.phase("reading " + input);
   std::vector<Point> points;
   std::vector<std::vector<std::size_t>> faces;
-  SP::IO::FreeSurfer_surface_info freesurfer_info;  // kept for a FreeSurfer output (its volume geometry)
+  SP::IO::FreeSurfer_surface_info freesurfer_info; // kept for a FreeSurfer output (its volume geometry)
   const SP::IO::File_read read = read_input(input, points, faces, freesurfer_info);
-  if(!read) {
+  if(!read)
+  {
     progress.clear();
     std::cerr << "error: " << read.message << " [" << SP::IO::get_file_status_name(read.status) << "]\n";
     return EXIT_IO;
@@ -1147,10 +1387,12 @@ int main(int argc, char** argv)
   progress.phase("checking " + std::to_string(points.size()) + " vertices, " + std::to_string(faces.size()) + " faces");
   const SP::Input_check check = SP::check_polygon_soup(points, faces);
   run.read_seconds = seconds_since(start);
-  if(!check) {
+  if(!check)
+  {
     progress.clear();
     std::cerr << "error: " << input << ": " << check.message << " [" << SP::get_error_name(check.status) << "]\n";
-    if(settings.json) {
+    if(settings.json)
+    {
       SP::Result rejected;
       rejected.status = check.status;
       rejected.message = check.message;
@@ -1166,11 +1408,13 @@ int main(int argc, char** argv)
   CGAL::Polygon_mesh_processing::polygon_soup_to_polygon_mesh(points, faces, mesh);
 
   const std::string fingerprint = input_fingerprint(points, faces);
-  if(!settings.overwrite && std::filesystem::exists(output)) {
+  if(!settings.overwrite && std::filesystem::exists(output))
+  {
     progress.phase("certifying the existing " + output);
     Written_figures kept;
     const std::string reason = reason_not_to_keep(output, mesh, faces, fingerprint, settings, kept);
-    if(reason.empty()) {
+    if(reason.empty())
+    {
       SP::Result done;
       done.status = SP::Error_code::OK;
       done.message = "Kept: the output already answers this request (a successful run with these settings, from this "
@@ -1186,12 +1430,15 @@ int main(int argc, char** argv)
       run.written = kept;
       run.total_seconds = seconds_since(start);
       progress.clear();
-      if(settings.json) print_json(std::cout, done, run);
-      else if(!settings.quiet) print_text(std::cout, done, run);
+      if(settings.json)
+        print_json(std::cout, done, run);
+      else if(!settings.quiet)
+        print_text(std::cout, done, run);
       return EXIT_OK;
     }
     progress.clear();
-    if(!settings.quiet) std::cerr << "note: mapping again: the existing '" << output << "' is not kept: " << reason << "\n";
+    if(!settings.quiet)
+      std::cerr << "note: mapping again: the existing '" << output << "' is not kept: " << reason << "\n";
   }
 
   auto sphere_map = mesh.add_property_map<Mesh::Vertex_index, Point>("v:sphere", Point(0, 0, 0)).first;
@@ -1201,35 +1448,39 @@ int main(int argc, char** argv)
     run_phase.compare_exchange_strong(expected, ITERATING);
     return progress(p) && stop_signal.load() == 0;
   };
-  const auto parameters =
-      SP::parameters::combine(SP::parameters::weighting(settings.weighting), SP::parameters::tolerance(settings.tolerance),
-                              SP::parameters::max_seconds(settings.max_seconds), SP::parameters::metis_seed(settings.seed),
-                              SP::parameters::max_gauss_seidel_sweeps(settings.gauss_seidel_sweeps >= 0
-                                                                          ? std::size_t(settings.gauss_seidel_sweeps)
-                                                                          : SP::default_max_gauss_seidel_sweeps),
-                              SP::parameters::preserve_bijectivity(settings.backtracking),
-                              SP::parameters::nonlinear_solver(settings.solver), SP::parameters::progress_callback(report),
-                              SP::parameters::admissible_weights(settings.admissible),
-                              SP::parameters::multilevel(settings.multilevel), CGAL::parameters::verbose(settings.verbose),
-                              SP::parameters::convergence_test(settings.criterion == "paper" ? SP::Convergence_test::PAPER_RESIDUAL
-                                                                                             : SP::Convergence_test::IMBALANCE));
+  const auto parameters = SP::parameters::combine(
+      SP::parameters::weighting(settings.weighting), SP::parameters::tolerance(settings.tolerance),
+      SP::parameters::max_seconds(settings.max_seconds), SP::parameters::metis_seed(settings.seed),
+      SP::parameters::max_gauss_seidel_sweeps(settings.gauss_seidel_sweeps >= 0
+                                                  ? std::size_t(settings.gauss_seidel_sweeps)
+                                                  : SP::default_max_gauss_seidel_sweeps),
+      SP::parameters::preserve_bijectivity(settings.backtracking), SP::parameters::nonlinear_solver(settings.solver),
+      SP::parameters::progress_callback(report), SP::parameters::admissible_weights(settings.admissible),
+      SP::parameters::multilevel(settings.multilevel), CGAL::parameters::verbose(settings.verbose),
+      SP::parameters::convergence_test(settings.criterion == "paper" ? SP::Convergence_test::PAPER_RESIDUAL
+                                                                     : SP::Convergence_test::IMBALANCE));
   progress.phase("input checks, then stage 1/3, initial guess");
   const Clock::time_point map_start = Clock::now();
   // The two disks of stage 1 at the same time where TBB is linked (twice as fast on large meshes); the map does not
   // depend on it.
   using Concurrency = CGAL::Parallel_if_available_tag;
   const SP::Result result =
-      settings.sparse_lu ? SP::spherical_parameterize<Concurrency>(mesh, sphere_map, SP::parameters::combine(parameters, CGAL::parameters::sparse_linear_solver(SP::Sparse_LU_disk_solver_traits())))
+      settings.sparse_lu ? SP::spherical_parameterize<Concurrency>(
+          mesh, sphere_map,
+          SP::parameters::combine(parameters,
+                                  CGAL::parameters::sparse_linear_solver(SP::Sparse_LU_disk_solver_traits())))
                          : SP::spherical_parameterize<Concurrency>(mesh, sphere_map, parameters);
   run.map_seconds = seconds_since(map_start);
   start_writing_phase();
 
   const bool has_map = result.number_of_vertices > 0 && result.residual >= 0.;
-  if(has_map) {
+  if(has_map)
+  {
     progress.phase("writing " + output);
     const Clock::time_point write_start = Clock::now();
     std::vector<Point> sphere(points.size());
-    for(Mesh::Vertex_index v : mesh.vertices()) sphere[static_cast<std::size_t>(v)] = sphere_map[v];
+    for(Mesh::Vertex_index v : mesh.vertices())
+      sphere[static_cast<std::size_t>(v)] = sphere_map[v];
     std::string error;
     Run_stamp stamp;
     stamp.status = SP::get_error_name(result.status);
@@ -1240,28 +1491,39 @@ int main(int argc, char** argv)
     stamp.precision = output_precision(output_format(output), settings);
     stamp.radius = settings.radius;
     stamp.input = fingerprint;
-    if(!write_sphere(output, sphere, faces, freesurfer_info, settings, format_stamp(stamp), error)) { progress.clear(); std::cerr << "error: " << error << "\n"; return EXIT_IO; }
+    if(!write_sphere(output, sphere, faces, freesurfer_info, settings, format_stamp(stamp), error))
+    {
+      progress.clear();
+      std::cerr << "error: " << error << "\n";
+      return EXIT_IO;
+    }
     run.output = output;
     run.written = certify_as_written(mesh, sphere, output_format(output), settings);
     run.write_seconds = seconds_since(write_start);
   }
   run.total_seconds = seconds_since(start);
   progress.clear();
-  if(settings.json) print_json(std::cout, result, run);
-  else if(!settings.quiet) print_text(std::cout, result, run);
+  if(settings.json)
+    print_json(std::cout, result, run);
+  else if(!settings.quiet)
+    print_text(std::cout, result, run);
   std::cout << std::flush;
 
-  if(!has_map) {
+  if(!has_map)
+  {
     std::cerr << "error: " << result.message << " [" << SP::get_error_name(result.status) << "]\n";
     return result.status == SP::Error_code::OK ? EXIT_NOT_SOLVED : EXIT_BAD_INPUT;
   }
-  if(result.status == SP::Error_code::OK && run.written.certified && !run.written.bijective) {
-    std::cerr << "error: the map is certified in double precision, but the coordinates as written (" << run.written.precision
-              << ", radius " << run.written.radius << ") fold " << plural(run.written.flipped_faces, "triangle")
+  if(result.status == SP::Error_code::OK && run.written.certified && !run.written.bijective)
+  {
+    std::cerr << "error: the map is certified in double precision, but the coordinates as written ("
+              << run.written.precision << ", radius " << run.written.radius << ") fold "
+              << plural(run.written.flipped_faces, "triangle")
               << ": write .off or .ply (17 digits), or .gii with --float64\n";
     return EXIT_NOT_SOLVED;
   }
-  if(result.status != SP::Error_code::OK) {
+  if(result.status != SP::Error_code::OK)
+  {
     if(result.status == SP::Error_code::CANCELLED && stop_signal.load() != 0)
       std::cerr << "error: interrupted (" << signal_name(stop_signal.load()) << ") [CANCELLED]\n";
     else

@@ -49,7 +49,8 @@ int main(int argc, char** argv)
 {
   const std::string input = (argc > 1) ? argv[1] : "data/bunny.off";
   Mesh mesh;
-  if(!CGAL::IO::read_polygon_mesh(input, mesh) || !CGAL::is_closed(mesh)) {
+  if(!CGAL::IO::read_polygon_mesh(input, mesh) || !CGAL::is_closed(mesh))
+  {
     std::cerr << "Cannot read a closed mesh from " << input << std::endl;
     return EXIT_FAILURE;
   }
@@ -58,7 +59,8 @@ int main(int argc, char** argv)
   // Both halfedges of an edge get the same value: symmetric weights.
   Mesh::Property_map<halfedge_descriptor, double> weight =
       mesh.add_property_map<halfedge_descriptor, double>("h:weight", 0.).first;
-  for(edge_descriptor e : edges(mesh)) {
+  for(edge_descriptor e : edges(mesh))
+  {
     const halfedge_descriptor h = halfedge(e, mesh);
     const double cotangent = 0.5 * (opposite_cotangent(mesh, h) + opposite_cotangent(mesh, opposite(h, mesh)));
     const double clamped = (std::max)(cotangent, 0.05);
@@ -70,8 +72,8 @@ int main(int argc, char** argv)
   Mesh::Property_map<vertex_descriptor, Point_3> sphere =
       mesh.add_property_map<vertex_descriptor, Point_3>("v:sphere", CGAL::ORIGIN).first;
   const SP::Result result = SP::spherical_parameterize(mesh, sphere, SP::parameters::halfedge_weight_map(weight));
-  std::cout << "clamped cotangent weights: " << SP::get_error_name(result.status) << ", Res " << result.residual
-            << ", " << result.flipped_faces << " flipped faces" << std::endl;
+  std::cout << "clamped cotangent weights: " << SP::get_error_name(result.status) << ", Res " << result.residual << ", "
+            << result.flipped_faces << " flipped faces" << std::endl;
   if(!result)
     return EXIT_FAILURE;
 
@@ -84,8 +86,8 @@ int main(int argc, char** argv)
 
   const SP::Spherical_distortion custom_distortion = SP::measure_spherical_distortion(mesh, sphere);
   const SP::Spherical_distortion tutte_distortion = SP::measure_spherical_distortion(mesh, tutte_sphere);
-  std::cout << "mean angle error: " << custom_distortion.mean_angle_error_degrees << " degrees (uniform weights: "
-            << tutte_distortion.mean_angle_error_degrees << " degrees)" << std::endl;
+  std::cout << "mean angle error: " << custom_distortion.mean_angle_error_degrees
+            << " degrees (uniform weights: " << tutte_distortion.mean_angle_error_degrees << " degrees)" << std::endl;
   std::cout << "area distortion (std. dev. of log area ratio): " << custom_distortion.log_area_ratio_stddev
             << " (uniform weights: " << tutte_distortion.log_area_ratio_stddev << ")" << std::endl;
   return EXIT_SUCCESS;

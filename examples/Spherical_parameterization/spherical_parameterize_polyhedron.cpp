@@ -35,14 +35,16 @@ int main(int argc, char** argv)
   const std::string output = (argc > 2) ? argv[2] : "bunny_sphere_polyhedron.off";
 
   Polyhedron polyhedron;
-  if(!CGAL::IO::read_polygon_mesh(input, polyhedron)) {
+  if(!CGAL::IO::read_polygon_mesh(input, polyhedron))
+  {
     std::cerr << "Cannot read a mesh from " << input << std::endl;
     return EXIT_FAILURE;
   }
 
   // What is wrong with a mesh, with its figures (boundary loops, genus, components...).
   const SP::Input_check check = SP::check_input(polyhedron);
-  if(!check) {
+  if(!check)
+  {
     std::cerr << "Not a closed genus-0 triangle mesh: " << check.message << std::endl;
     return EXIT_FAILURE;
   }
@@ -63,7 +65,8 @@ int main(int argc, char** argv)
   // The polyhedron becomes its own spherical image.
   for(vertex_descriptor v : vertices(polyhedron))
     v->point() = get(sphere, v);
-  if(!CGAL::IO::write_polygon_mesh(output, polyhedron, CGAL::parameters::stream_precision(17))) {
+  if(!CGAL::IO::write_polygon_mesh(output, polyhedron, CGAL::parameters::stream_precision(17)))
+  {
     std::cerr << "Cannot write " << output << std::endl;
     return EXIT_FAILURE;
   }

@@ -32,7 +32,8 @@ int main(int argc, char** argv)
   const std::string output = (argc > 2) ? argv[2] : "bunny_sphere.off";
 
   Mesh mesh;
-  if(!CGAL::IO::read_polygon_mesh(input, mesh)) {
+  if(!CGAL::IO::read_polygon_mesh(input, mesh))
+  {
     std::cerr << "Cannot read a mesh from " << input << std::endl;
     return EXIT_FAILURE;
   }
@@ -55,7 +56,8 @@ int main(int argc, char** argv)
   std::cout << "certified bijective: " << std::boolalpha << SP::is_bijective_on_sphere(mesh, sphere) << std::endl;
 
   // The sphere mesh: same vertices and faces, the sphere positions as points.
-  if(!CGAL::IO::write_polygon_mesh(output, mesh, CGAL::parameters::vertex_point_map(sphere).stream_precision(17))) {
+  if(!CGAL::IO::write_polygon_mesh(output, mesh, CGAL::parameters::vertex_point_map(sphere).stream_precision(17)))
+  {
     std::cerr << "Cannot write " << output << std::endl;
     return EXIT_FAILURE;
   }

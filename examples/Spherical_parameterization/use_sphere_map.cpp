@@ -49,10 +49,12 @@ bool write_textured_obj(const std::string& filename, const Mesh& mesh, Sphere_ma
   out.precision(17);
   for(vertex_descriptor v : vertices(mesh))
     out << "v " << mesh.point(v) << '\n';
-  for(face_descriptor f : faces(mesh)) {
+  for(face_descriptor f : faces(mesh))
+  {
     double u[3], v[3];
     int k = 0;
-    for(vertex_descriptor w : vertices_around_face(halfedge(f, mesh), mesh)) {
+    for(vertex_descriptor w : vertices_around_face(halfedge(f, mesh), mesh))
+    {
       const Point_3& p = sphere[w];
       u[k] = 0.5 + std::atan2(p.y(), p.x()) / (2. * CGAL_PI);
       v[k] = 0.5 + std::asin((std::max)(-1., (std::min)(1., p.z()))) / CGAL_PI;
@@ -65,7 +67,8 @@ bool write_textured_obj(const std::string& filename, const Mesh& mesh, Sphere_ma
       out << "vt " << u[i] << ' ' << v[i] << '\n';
   }
   std::size_t corner = 1;
-  for(face_descriptor f : faces(mesh)) {
+  for(face_descriptor f : faces(mesh))
+  {
     out << 'f';
     for(vertex_descriptor w : vertices_around_face(halfedge(f, mesh), mesh))
       out << ' ' << std::size_t(w) + 1 << '/' << corner++;
@@ -81,19 +84,22 @@ int main(int argc, char** argv)
   const std::string remeshed = (argc > 3) ? argv[3] : "bunny_remeshed.off";
 
   Mesh mesh;
-  if(!CGAL::IO::read_polygon_mesh(input, mesh)) {
+  if(!CGAL::IO::read_polygon_mesh(input, mesh))
+  {
     std::cerr << "Cannot read a mesh from " << input << std::endl;
     return EXIT_FAILURE;
   }
   Sphere_map sphere = mesh.add_property_map<vertex_descriptor, Point_3>("v:sphere", CGAL::ORIGIN).first;
   const SP::Result result = SP::spherical_parameterize(mesh, sphere);
-  if(!result) {
+  if(!result)
+  {
     std::cerr << "No bijective map: " << result.message << std::endl;
     return EXIT_FAILURE;
   }
 
   // 1. Texture coordinates.
-  if(!write_textured_obj(textured, mesh, sphere)) {
+  if(!write_textured_obj(textured, mesh, sphere))
+  {
     std::cerr << "Cannot write " << textured << std::endl;
     return EXIT_FAILURE;
   }
@@ -103,7 +109,8 @@ int main(int argc, char** argv)
   Mesh icosphere;
   CGAL::make_icosahedron(icosphere, Point_3(0, 0, 0), 1.);
   CGAL::Subdivision_method_3::Loop_subdivision(icosphere, CGAL::parameters::number_of_iterations(4));
-  for(vertex_descriptor v : vertices(icosphere)) {
+  for(vertex_descriptor v : vertices(icosphere))
+  {
     const Vector_3 radius = icosphere.point(v) - CGAL::ORIGIN;
     icosphere.point(v) = CGAL::ORIGIN + radius / std::sqrt(radius.squared_length());
   }
@@ -115,10 +122,10 @@ int main(int argc, char** argv)
   PMP::build_AABB_tree(mesh, tree, CGAL::parameters::vertex_point_map(sphere));
 
   std::size_t located = 0;
-  for(vertex_descriptor v : vertices(icosphere)) {
-    const PMP::Face_location<Mesh, double> location =
-        PMP::locate_with_AABB_tree(Ray_3(CGAL::ORIGIN, icosphere.point(v)), tree, mesh,
-                                   CGAL::parameters::vertex_point_map(sphere));
+  for(vertex_descriptor v : vertices(icosphere))
+  {
+    const PMP::Face_location<Mesh, double> location = PMP::locate_with_AABB_tree(
+        Ray_3(CGAL::ORIGIN, icosphere.point(v)), tree, mesh, CGAL::parameters::vertex_point_map(sphere));
     if(location.first == Mesh::null_face())
       continue;
     ++located;
@@ -133,11 +140,13 @@ int main(int argc, char** argv)
   }
   std::cout << located << " of " << num_vertices(icosphere) << " icosphere vertices located on the sphere map"
             << std::endl;
-  if(located != num_vertices(icosphere)) {
+  if(located != num_vertices(icosphere))
+  {
     std::cerr << "Some points were not located: the map is not bijective" << std::endl;
     return EXIT_FAILURE;
   }
-  if(!CGAL::IO::write_polygon_mesh(remeshed, icosphere, CGAL::parameters::stream_precision(17))) {
+  if(!CGAL::IO::write_polygon_mesh(remeshed, icosphere, CGAL::parameters::stream_precision(17)))
+  {
     std::cerr << "Cannot write " << remeshed << std::endl;
     return EXIT_FAILURE;
   }

@@ -57,9 +57,17 @@ Mesh read_mesh(const std::string& name)
   return mesh;
 }
 
-Eigen::Vector3d to_eigen(const Point_3& p) { return Eigen::Vector3d(p.x(), p.y(), p.z()); }
+Eigen::Vector3d to_eigen(const Point_3& p)
+{
+  return Eigen::Vector3d(p.x(), p.y(), p.z());
+}
 
-enum class Weighting { UNIFORM, COTANGENT, MEAN_VALUE };
+enum class Weighting
+{
+  UNIFORM,
+  COTANGENT,
+  MEAN_VALUE
+};
 
 // Weight of the edge from interior vertex i to its neighbour j = source(h), h pointing to i.
 double edge_weight(const Mesh& mesh, Mesh::Halfedge_index h, Weighting weighting)
@@ -72,9 +80,7 @@ double edge_weight(const Mesh& mesh, Mesh::Halfedge_index h, Weighting weighting
   const Eigen::Vector3d k2 = to_eigen(mesh.point(mesh.target(mesh.next(mesh.opposite(h)))));
   if(weighting == Weighting::COTANGENT)
   {
-    auto cotangent = [](const Eigen::Vector3d& u, const Eigen::Vector3d& v) {
-      return u.dot(v) / u.cross(v).norm();
-    };
+    auto cotangent = [](const Eigen::Vector3d& u, const Eigen::Vector3d& v) { return u.dot(v) / u.cross(v).norm(); };
     return 0.5 * (cotangent(xi - k1, xj - k1) + cotangent(xi - k2, xj - k2));
   }
   auto half_angle_tangent = [](const Eigen::Vector3d& u, const Eigen::Vector3d& v) {
@@ -100,8 +106,9 @@ Disk_system build_disk_system(const Mesh& mesh, Weighting weighting, bool keep_b
     border.push_back(v);
   std::vector<double> arc_length(border.size() + 1, 0.);
   for(std::size_t k = 0; k < border.size(); ++k)
-    arc_length[k + 1] = arc_length[k]
-      + (to_eigen(mesh.point(border[(k + 1) % border.size()])) - to_eigen(mesh.point(border[k]))).norm();
+    arc_length[k + 1] =
+        arc_length[k]
+        + (to_eigen(mesh.point(border[(k + 1) % border.size()])) - to_eigen(mesh.point(border[k]))).norm();
   std::vector<Eigen::Vector2d> border_uv(mesh.number_of_vertices());
   std::vector<char> is_border(mesh.number_of_vertices(), 0);
   for(std::size_t k = 0; k < border.size(); ++k)
@@ -164,10 +171,14 @@ Sparse_matrix poisson_grid(int side)
     {
       const int i = y * side + x;
       triplets.emplace_back(i, i, 4.);
-      if(x > 0) triplets.emplace_back(i, i - 1, -1.);
-      if(x + 1 < side) triplets.emplace_back(i, i + 1, -1.);
-      if(y > 0) triplets.emplace_back(i, i - side, -1.);
-      if(y + 1 < side) triplets.emplace_back(i, i + side, -1.);
+      if(x > 0)
+        triplets.emplace_back(i, i - 1, -1.);
+      if(x + 1 < side)
+        triplets.emplace_back(i, i + 1, -1.);
+      if(y > 0)
+        triplets.emplace_back(i, i - side, -1.);
+      if(y + 1 < side)
+        triplets.emplace_back(i, i + side, -1.);
     }
   Sparse_matrix A(side * side, side * side);
   A.setFromTriplets(triplets.begin(), triplets.end());
@@ -208,13 +219,15 @@ struct Disk_case
 std::string case_name(const testing::TestParamInfo<Disk_case>& info)
 {
   std::string name = info.param.mesh.substr(0, info.param.mesh.find('.'));
-  name += info.param.weighting == Weighting::UNIFORM ? "_uniform"
-        : info.param.weighting == Weighting::COTANGENT ? "_cotangent" : "_mean_value";
+  name += info.param.weighting == Weighting::UNIFORM     ? "_uniform"
+          : info.param.weighting == Weighting::COTANGENT ? "_cotangent"
+                                                         : "_mean_value";
   name += info.param.keep_border_rows ? "_border_rows" : "_reduced";
   return name;
 }
 
-class Disk_systems : public testing::TestWithParam<Disk_case> { };
+class Disk_systems : public testing::TestWithParam<Disk_case>
+{};
 
 TEST_P(Disk_systems, MatchSparseLUToTightTolerance)
 {
@@ -355,17 +368,17 @@ TEST(Fixed_border_parameterizer, MatchesDefaultSolverAndSetsUpOnce)
   EXPECT_TRUE(solver.statistics().symmetric) << "identity border rows must be eliminated";
   EXPECT_LE(solver.statistics().relative_residual, 1e-10);
 
-  typedef CGAL::Eigen_solver_traits<Eigen::BiCGSTAB<CGAL::Eigen_sparse_matrix<double>::EigenType,
-                                                    Eigen::IncompleteLUT<double>>> Default_traits;
+  typedef CGAL::Eigen_solver_traits<
+      Eigen::BiCGSTAB<CGAL::Eigen_sparse_matrix<double>::EigenType, Eigen::IncompleteLUT<double>>>
+      Default_traits;
   const std::vector<Point_2> default_uv = parameterize_with(disk, Default_traits());
   ASSERT_EQ(amg_uv.size(), default_uv.size());
   double largest_difference = 0., largest_coordinate = 0.;
   for(std::size_t k = 0; k < amg_uv.size(); ++k)
   {
-    largest_difference = (std::max)({largest_difference, std::abs(amg_uv[k].x() - default_uv[k].x()),
-                                     std::abs(amg_uv[k].y() - default_uv[k].y())});
-    largest_coordinate = (std::max)({largest_coordinate, std::abs(default_uv[k].x()),
-                                     std::abs(default_uv[k].y())});
+    largest_difference = (std::max)(
+        {largest_difference, std::abs(amg_uv[k].x() - default_uv[k].x()), std::abs(amg_uv[k].y() - default_uv[k].y())});
+    largest_coordinate = (std::max)({largest_coordinate, std::abs(default_uv[k].x()), std::abs(default_uv[k].y())});
   }
   EXPECT_LE(largest_difference / largest_coordinate, 1e-8);
 }
@@ -409,8 +422,7 @@ TEST(Factor_and_solve, SetupParametersTriggerANewSetup)
   EXPECT_EQ(solver.statistics().number_of_setups, 1u);
 
   std::size_t setups = 1;
-  const auto expect_new_setup = [&](const char* what)
-  {
+  const auto expect_new_setup = [&](const char* what) {
     ASSERT_TRUE(solver.factor(AMG_traits::Matrix(system.A), D)) << what;
     EXPECT_EQ(solver.statistics().number_of_setups, ++setups) << what;
   };
@@ -464,11 +476,18 @@ Sparse_matrix neumann_grid(int side)
     {
       const int i = y * side + x;
       double degree = 0.;
-      auto add = [&](int j) { triplets.emplace_back(i, j, -1.); degree += 1.; };
-      if(x > 0) add(i - 1);
-      if(x + 1 < side) add(i + 1);
-      if(y > 0) add(i - side);
-      if(y + 1 < side) add(i + side);
+      auto add = [&](int j) {
+        triplets.emplace_back(i, j, -1.);
+        degree += 1.;
+      };
+      if(x > 0)
+        add(i - 1);
+      if(x + 1 < side)
+        add(i + 1);
+      if(y > 0)
+        add(i - side);
+      if(y + 1 < side)
+        add(i + side);
       triplets.emplace_back(i, i, degree);
     }
   Sparse_matrix A(side * side, side * side);
@@ -488,16 +507,16 @@ TEST(Bad_input, SingularAndNonFiniteSystemsFailQuickly)
     double D;
     {
       const Sparse_matrix A = neumann_grid(100);
-      EXPECT_FALSE(AMG_traits(parameters).linear_solver(AMG_traits::Matrix(A),
-                                                        to_vector(Eigen::VectorXd::Ones(A.rows())), X, D));
+      EXPECT_FALSE(AMG_traits(parameters)
+                       .linear_solver(AMG_traits::Matrix(A), to_vector(Eigen::VectorXd::Ones(A.rows())), X, D));
     }
     {
       Sparse_matrix A = poisson_grid(50);
       for(Sparse_matrix::InnerIterator it(A, 7); it; ++it)
         it.valueRef() = 0.; // zero column 7 and, by symmetry of the pattern, the 7th diagonal entry
       A.prune(0.);
-      EXPECT_FALSE(AMG_traits(parameters).linear_solver(AMG_traits::Matrix(A),
-                                                        to_vector(Eigen::VectorXd::Ones(A.rows())), X, D));
+      EXPECT_FALSE(AMG_traits(parameters)
+                       .linear_solver(AMG_traits::Matrix(A), to_vector(Eigen::VectorXd::Ones(A.rows())), X, D));
     }
     {
       Sparse_matrix A = poisson_grid(50);

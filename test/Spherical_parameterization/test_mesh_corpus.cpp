@@ -53,16 +53,19 @@ int expect_code(const std::string& expected, const std::string& path)
   std::string through = "read";
   std::clock_t untimed = 0;
   std::chrono::steady_clock::duration untimed_wall{0};
-  std::ostringstream phases;  // CPU seconds of each step
+  std::ostringstream phases; // CPU seconds of each step
   auto phase = [&](const char* name) {
     phases << name << " " << double(std::clock() - cpu_start) / CLOCKS_PER_SEC << " s; ";
   };
   const SP::IO::File_read read = SP::IO::read_polygon_soup(path, points, faces);
   phase("read");
-  if(!read) {
+  if(!read)
+  {
     got = SP::IO::get_file_status_name(read.status);
     message = read.message;
-  } else {
+  }
+  else
+  {
     through = "check_polygon_soup";
     const SP::Input_check check = SP::check_polygon_soup(points, faces);
     got = SP::get_error_name(check.status);
@@ -75,7 +78,8 @@ int expect_code(const std::string& expected, const std::string& path)
     const bool is_polygon_mesh = CGAL::Polygon_mesh_processing::is_polygon_soup_a_polygon_mesh(faces);
     untimed += std::clock() - decide_start;
     untimed_wall += std::chrono::steady_clock::now() - decide_wall;
-    if(is_polygon_mesh) {
+    if(is_polygon_mesh)
+    {
       const std::clock_t convert_start = std::clock();
       const auto convert_wall = std::chrono::steady_clock::now();
       Mesh mesh;
@@ -87,28 +91,50 @@ int expect_code(const std::string& expected, const std::string& path)
       const SP::Result result = SP::spherical_parameterize(mesh, sphere, SP::parameters::max_seconds(60.));
       through += " + spherical_parameterize";
       phase("spherical_parameterize");
-      if(std::string(SP::get_error_name(result.status)) != got) {
+      if(std::string(SP::get_error_name(result.status)) != got)
+      {
         got = std::string(SP::get_error_name(result.status)) + " (check_polygon_soup said " + got + ")";
       }
       message = result.message;
-      if(result.status == SP::Error_code::OK) {
+      if(result.status == SP::Error_code::OK)
+      {
         const SP::Sphere_map_certificate certificate = SP::certify_sphere_map(mesh, sphere);
-        std::cout << "certificate: " << certificate.flipped_faces << " flipped faces, area " << certificate.total_signed_area << "\n";
-        if(!certificate.bijective) got = "OK but not certified bijective";
-      } else if(result.status != SP::Error_code::NOT_CONVERGED && result.status != SP::Error_code::NOT_BIJECTIVE) {
+        std::cout << "certificate: " << certificate.flipped_faces << " flipped faces, area "
+                  << certificate.total_signed_area << "\n";
+        if(!certificate.bijective)
+          got = "OK but not certified bijective";
+      }
+      else if(result.status != SP::Error_code::NOT_CONVERGED && result.status != SP::Error_code::NOT_BIJECTIVE)
+      {
         for(auto v : mesh.vertices())
-          if(!(sphere[v] == Point(7, 7, 7))) { got = "an input error that wrote to the map"; break; }
+          if(!(sphere[v] == Point(7, 7, 7)))
+          {
+            got = "an input error that wrote to the map";
+            break;
+          }
       }
     }
   }
   const double cpu = double(std::clock() - cpu_start - untimed) / CLOCKS_PER_SEC;
-  const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - wall_start - untimed_wall).count();
-  std::cout << path << ": " << got << " (" << through << ") in " << wall << " s wall, " << cpu << " s CPU (reading, checking, spherical_parameterize)\n  (CPU time after " << phases.str() << ")\n  " << message << "\n";
+  const double wall =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - wall_start - untimed_wall).count();
+  std::cout << path << ": " << got << " (" << through << ") in " << wall << " s wall, " << cpu
+            << " s CPU (reading, checking, spherical_parameterize)\n  (CPU time after " << phases.str() << ")\n  "
+            << message << "\n";
   int failures = 0;
-  if(got != expected) { std::cout << "FAIL: expected " << expected << "\n"; ++failures; }
+  if(got != expected)
+  {
+    std::cout << "FAIL: expected " << expected << "\n";
+    ++failures;
+  }
   // CPU time, not wall time: the verdict must not depend on what else the machine runs.
-  if(expected != "OK" && cpu >= 2.) { std::cout << "FAIL: rejecting took " << cpu << " s of CPU time (limit 2 s)\n"; ++failures; }
-  if(failures == 0) std::cout << "PASS\n";
+  if(expected != "OK" && cpu >= 2.)
+  {
+    std::cout << "FAIL: rejecting took " << cpu << " s of CPU time (limit 2 s)\n";
+    ++failures;
+  }
+  if(failures == 0)
+    std::cout << "PASS\n";
   return failures == 0 ? 0 : 1;
 }
 
@@ -116,68 +142,96 @@ int expect_code(const std::string& expected, const std::string& path)
 
 int main(int argc, char** argv)
 {
-  if(argc == 4 && std::string(argv[1]) == "--expect") return expect_code(argv[2], argv[3]);
-  if(argc < 3) { std::cerr << "usage: test_mesh_corpus MESH uniform|cotangent|mean_value[_admissible][_morton_order] [--known-failure REASON]\n"; return 2; }
+  if(argc == 4 && std::string(argv[1]) == "--expect")
+    return expect_code(argv[2], argv[3]);
+  if(argc < 3)
+  {
+    std::cerr << "usage: test_mesh_corpus MESH uniform|cotangent|mean_value[_admissible][_morton_order] "
+                 "[--known-failure REASON]\n";
+    return 2;
+  }
   const std::string path = argv[1], weights = argv[2];
   const std::string known_failure = (argc >= 5 && std::string(argv[3]) == "--known-failure") ? argv[4] : "";
   // WEIGHTS: uniform, cotangent, mean_value, or one of the last two + "_admissible" (admissible_weights(true)),
   // then optionally "_morton_order": the vertices renumbered first as the package does for large meshes, because
   // on hard meshes the outcome depends on the vertex order.
   auto strip = [](std::string& text, const std::string& suffix) {
-    const bool has = text.size() > suffix.size() && text.compare(text.size() - suffix.size(), suffix.size(), suffix) == 0;
-    if(has) text.erase(text.size() - suffix.size());
+    const bool has =
+        text.size() > suffix.size() && text.compare(text.size() - suffix.size(), suffix.size(), suffix) == 0;
+    if(has)
+      text.erase(text.size() - suffix.size());
     return has;
   };
   std::string base = weights;
   const bool morton_order = strip(base, "_morton_order");
   const bool admissible = strip(base, "_admissible");
   SP::Weighting weighting = SP::Weighting::UNIFORM;
-  if(base == "cotangent") weighting = SP::Weighting::COTANGENT;
-  else if(base == "mean_value") weighting = SP::Weighting::MEAN_VALUE;
-  else if(base != "uniform") { std::cerr << "unknown weights " << weights << "\n"; return 2; }
+  if(base == "cotangent")
+    weighting = SP::Weighting::COTANGENT;
+  else if(base == "mean_value")
+    weighting = SP::Weighting::MEAN_VALUE;
+  else if(base != "uniform")
+  {
+    std::cerr << "unknown weights " << weights << "\n";
+    return 2;
+  }
 
   Mesh mesh;
-  if(!CGAL::IO::read_polygon_mesh(path, mesh) || mesh.is_empty()) {
+  if(!CGAL::IO::read_polygon_mesh(path, mesh) || mesh.is_empty())
+  {
     std::cerr << "FAIL: cannot read " << path << "\n";
     return 1;
   }
-  if(morton_order) {
-    SP::internal::Mesh_arrays arrays = SP::internal::read_face_graph(mesh, get(CGAL::vertex_point, mesh), get(CGAL::vertex_index, mesh));
+  if(morton_order)
+  {
+    SP::internal::Mesh_arrays arrays =
+        SP::internal::read_face_graph(mesh, get(CGAL::vertex_point, mesh), get(CGAL::vertex_index, mesh));
     SP::internal::renumber_for_locality(arrays, 0);
     Mesh renumbered;
-    for(const SP::internal::Vector3& p : arrays.points) renumbered.add_vertex(Point(p.x, p.y, p.z));
+    for(const SP::internal::Vector3& p : arrays.points)
+      renumbered.add_vertex(Point(p.x, p.y, p.z));
     for(const auto& t : arrays.triangles)
       renumbered.add_face(Mesh::Vertex_index(Mesh::size_type(t[0])), Mesh::Vertex_index(Mesh::size_type(t[1])),
                           Mesh::Vertex_index(Mesh::size_type(t[2])));
-    if(renumbered.number_of_faces() != mesh.number_of_faces()) { std::cerr << "FAIL: cannot renumber " << path << "\n"; return 1; }
+    if(renumbered.number_of_faces() != mesh.number_of_faces())
+    {
+      std::cerr << "FAIL: cannot renumber " << path << "\n";
+      return 1;
+    }
     mesh = std::move(renumbered);
   }
   auto sphere = mesh.add_property_map<Mesh::Vertex_index, Point>("v:sphere", Point(0, 0, 0)).first;
   // A time budget keeps a regression from hanging the test run; known failures get a shorter one.
   const double budget = known_failure.empty() ? 300. : 10.;
   const SP::Result result = SP::spherical_parameterize(
-      mesh, sphere, SP::parameters::combine(SP::parameters::weighting(weighting), SP::parameters::max_seconds(budget),
-                                            SP::parameters::admissible_weights(admissible)));
+      mesh, sphere,
+      SP::parameters::combine(SP::parameters::weighting(weighting), SP::parameters::max_seconds(budget),
+                              SP::parameters::admissible_weights(admissible)));
   const SP::Sphere_map_certificate certificate = SP::certify_sphere_map(mesh, sphere);
 
-  std::cout << path << " [" << weights << "] faces " << mesh.number_of_faces() << " status " << SP::get_error_name(result.status)
-            << " max_imbalance " << result.max_imbalance << " (" << result.vertices_at_rounding_floor << " at their rounding floor)"
-            << " max_stationarity " << result.max_stationarity << " Res " << result.residual << " max_tangential " << result.max_tangential_residual
-            << " flips " << certificate.flipped_faces << " area " << certificate.total_signed_area
-            << " seconds(initial/gs/newton) " << result.initial_guess.seconds << "/" << result.gauss_seidel.seconds << "/"
-            << result.newton.seconds << " sweeps(gs/newton) " << result.gauss_seidel.iterations << "/" << result.newton.iterations
+  std::cout << path << " [" << weights << "] faces " << mesh.number_of_faces() << " status "
+            << SP::get_error_name(result.status) << " max_imbalance " << result.max_imbalance << " ("
+            << result.vertices_at_rounding_floor << " at their rounding floor)"
+            << " max_stationarity " << result.max_stationarity << " Res " << result.residual << " max_tangential "
+            << result.max_tangential_residual << " flips " << certificate.flipped_faces << " area "
+            << certificate.total_signed_area << " seconds(initial/gs/newton) " << result.initial_guess.seconds << "/"
+            << result.gauss_seidel.seconds << "/" << result.newton.seconds << " sweeps(gs/newton) "
+            << result.gauss_seidel.iterations << "/" << result.newton.iterations
             << (result.uniform_initial_guess_fallback ? " (uniform initial guess)" : "") << "\n";
 
   // The imbalance recomputed here on the written map, by its definition (uniform weights: every neighbour counts
   // the same), with the documented rounding floor: every vertex within 1e-6 of balanced, or within its floor.
   std::size_t unbalanced = 0;
   double worst = 0.;
-  if(base == "uniform" && !admissible) {
-    for(auto v : mesh.vertices()) {
+  if(base == "uniform" && !admissible)
+  {
+    for(auto v : mesh.vertices())
+    {
       const auto& p = sphere[v];
       CGAL::Epick::Vector_3 pull(0, 0, 0);
       double scale = 0., count = 0.;
-      for(auto u : CGAL::vertices_around_target(mesh.halfedge(v), mesh)) {
+      for(auto u : CGAL::vertices_around_target(mesh.halfedge(v), mesh))
+      {
         pull = pull + (sphere[u] - p);
         scale += std::sqrt((sphere[u] - p).squared_length());
         count += 1.;
@@ -187,29 +241,38 @@ int main(int argc, char** argv)
       const double e = std::sqrt(tangential.squared_length()) / scale;
       const double rounding_floor = 8. * 2. * std::sqrt(3.) * std::ldexp(1., -53) * count / scale;
       worst = std::max(worst, e);
-      if(!(e <= std::max(1e-6, rounding_floor))) ++unbalanced;
+      if(!(e <= std::max(1e-6, rounding_floor)))
+        ++unbalanced;
     }
-    std::cout << "imbalance recomputed: max " << worst << ", " << unbalanced << " vertices above 1e-6 and their floor\n";
+    std::cout << "imbalance recomputed: max " << worst << ", " << unbalanced
+              << " vertices above 1e-6 and their floor\n";
   }
   // Non-symmetric weights (mean value) stop on the stationarity of their least-squares problem (their imbalance
   // cannot reach the tolerance); the result reports it. (On regular meshes such as the octahedron, mean-value weights
   // are symmetric: the imbalance test then.)
   const bool least_squares = base == "mean_value" && !admissible && result.max_stationarity >= 0.;
-  const bool balanced = result.convergence_test == SP::Convergence_test::IMBALANCE &&
-                        (least_squares ? result.max_stationarity >= 0. && result.unstationary_vertices == 0
-                                       : result.max_imbalance >= 0. && result.unbalanced_vertices == 0 && unbalanced == 0);
-  const bool ok = result.status == SP::Error_code::OK && balanced &&
-                  certificate.flipped_faces == 0 && std::abs(certificate.total_signed_area - 4. * CGAL_PI) < 1e-6 &&
-                  certificate.bijective && result.flipped_faces == 0;
-  if(!known_failure.empty()) {
-    if(ok) {
+  const bool balanced =
+      result.convergence_test == SP::Convergence_test::IMBALANCE
+      && (least_squares ? result.max_stationarity >= 0. && result.unstationary_vertices == 0
+                        : result.max_imbalance >= 0. && result.unbalanced_vertices == 0 && unbalanced == 0);
+  const bool ok = result.status == SP::Error_code::OK && balanced && certificate.flipped_faces == 0
+                  && std::abs(certificate.total_signed_area - 4. * CGAL_PI) < 1e-6 && certificate.bijective
+                  && result.flipped_faces == 0;
+  if(!known_failure.empty())
+  {
+    if(ok)
+    {
       std::cout << "FAIL: " << path << " [" << weights << "] works now: remove it from known_failures.txt\n";
       return 1;
     }
     std::cout << "KNOWN FAILURE (still failing): " << path << " [" << weights << "]: " << known_failure << "\n";
     return 0;
   }
-  if(!ok) { std::cout << "FAIL: " << result.message << "\n"; return 1; }
+  if(!ok)
+  {
+    std::cout << "FAIL: " << result.message << "\n";
+    return 1;
+  }
   std::cout << "PASS\n";
   return 0;
 }

@@ -12,7 +12,7 @@
 #include <CGAL/Spherical_parameterization/check_input.h>
 #include <CGAL/Spherical_parameterization/internal/stage3/constrained_balance.h>
 #include <CGAL/Spherical_parameterization/internal/stage3/imbalance_least_squares.h>
-#include <CGAL/Spherical_parameterization/is_bijective_on_sphere.h>  // certificate and distortion, through the header kept for earlier code
+#include <CGAL/Spherical_parameterization/is_bijective_on_sphere.h> // certificate and distortion, through the header kept for earlier code
 #include <CGAL/Spherical_parameterization/spherical_parameterize.h>
 
 #include <CGAL/Exact_predicates_exact_constructions_kernel.h>
@@ -64,14 +64,16 @@ CGAL::Real_timer started_timer()
 const std::string shared_meshes = SP_SHARED_MESHES;
 const std::string cgal_data = SP_CGAL_DATA;
 
-struct Arrays {
+struct Arrays
+{
   std::vector<Point> points;
   std::vector<std::vector<std::size_t>> faces;
 };
 
 Arrays tetrahedron()
 {
-  return {{Point(1, 1, 1), Point(1, -1, -1), Point(-1, 1, -1), Point(-1, -1, 1)}, {{0, 1, 2}, {0, 2, 3}, {0, 3, 1}, {1, 3, 2}}};
+  return {{Point(1, 1, 1), Point(1, -1, -1), Point(-1, 1, -1), Point(-1, -1, 1)},
+          {{0, 1, 2}, {0, 2, 3}, {0, 3, 1}, {1, 3, 2}}};
 }
 
 Arrays octahedron()
@@ -83,9 +85,11 @@ Arrays octahedron()
 Arrays cube()
 {
   Arrays a;
-  for(int i = 0; i < 8; ++i) a.points.emplace_back(i & 1 ? 1 : -1, i & 2 ? 1 : -1, i & 4 ? 1 : -1);
+  for(int i = 0; i < 8; ++i)
+    a.points.emplace_back(i & 1 ? 1 : -1, i & 2 ? 1 : -1, i & 4 ? 1 : -1);
   const std::size_t quads[6][4] = {{0, 2, 3, 1}, {4, 5, 7, 6}, {0, 1, 5, 4}, {2, 6, 7, 3}, {0, 4, 6, 2}, {1, 3, 7, 5}};
-  for(const auto& q : quads) {
+  for(const auto& q : quads)
+  {
     a.faces.push_back({q[0], q[1], q[2]});
     a.faces.push_back({q[0], q[2], q[3]});
   }
@@ -97,10 +101,13 @@ Arrays icosahedron()
   Mesh m;
   CGAL::make_icosahedron(m, Point(0, 0, 0), 1.);
   Arrays a;
-  for(auto v : m.vertices()) a.points.push_back(m.point(v));
-  for(auto f : m.faces()) {
+  for(auto v : m.vertices())
+    a.points.push_back(m.point(v));
+  for(auto f : m.faces())
+  {
     std::vector<std::size_t> face;
-    for(auto v : vertices_around_face(m.halfedge(f), m)) face.push_back(std::size_t(v));
+    for(auto v : vertices_around_face(m.halfedge(f), m))
+      face.push_back(std::size_t(v));
     a.faces.push_back(face);
   }
   return a;
@@ -111,13 +118,15 @@ Arrays torus(int nu = 8, int nv = 6)
 {
   Arrays a;
   for(int i = 0; i < nu; ++i)
-    for(int j = 0; j < nv; ++j) {
+    for(int j = 0; j < nv; ++j)
+    {
       const double u = 2 * CGAL_PI * i / nu, v = 2 * CGAL_PI * j / nv;
       a.points.emplace_back((2 + std::cos(v)) * std::cos(u), (2 + std::cos(v)) * std::sin(u), std::sin(v));
     }
   auto id = [&](int i, int j) { return std::size_t(((i + nu) % nu) * nv + (j + nv) % nv); };
   for(int i = 0; i < nu; ++i)
-    for(int j = 0; j < nv; ++j) {
+    for(int j = 0; j < nv; ++j)
+    {
       a.faces.push_back({id(i, j), id(i + 1, j), id(i + 1, j + 1)});
       a.faces.push_back({id(i, j), id(i + 1, j + 1), id(i, j + 1)});
     }
@@ -127,10 +136,13 @@ Arrays torus(int nu = 8, int nv = 6)
 Mesh to_mesh(const Arrays& a)
 {
   Mesh m;
-  for(const Point& p : a.points) m.add_vertex(p);
-  for(const auto& f : a.faces) {
+  for(const Point& p : a.points)
+    m.add_vertex(p);
+  for(const auto& f : a.faces)
+  {
     std::vector<Mesh::Vertex_index> vs;
-    for(std::size_t i : f) vs.push_back(Mesh::Vertex_index(static_cast<Mesh::size_type>(i)));
+    for(std::size_t i : f)
+      vs.push_back(Mesh::Vertex_index(static_cast<Mesh::size_type>(i)));
     m.add_face(vs);
   }
   return m;
@@ -149,10 +161,11 @@ Mesh read_mesh(const std::string& path)
 // expression decides it, otherwise in exact rational arithmetic (a double converts exactly). With every face
 // positive on a closed surface, the faces whose cone holds a direction d on no plane through an edge are as many
 // as the degree of the map, the same for every such d; degree 1 then makes the map a bijection.
-struct Exact_certificate {
+struct Exact_certificate
+{
   bool closed_triangle_mesh = false;
   std::size_t non_positive_faces = 0;
-  std::size_t degree = 0;  // counted only when the mesh is closed and every face positive
+  std::size_t degree = 0; // counted only when the mesh is closed and every face positive
   bool bijective() const { return closed_triangle_mesh && non_positive_faces == 0 && degree == 1; }
 };
 
@@ -161,14 +174,18 @@ using Coordinates = std::array<double, 3>;
 int sign_of_det(const Coordinates& a, const Coordinates& b, const Coordinates& c)
 {
   for(const Coordinates* p : {&a, &b, &c})
-    for(double v : *p) if(!std::isfinite(v)) return 0;
-  const double det = a[0] * (b[1] * c[2] - b[2] * c[1]) + a[1] * (b[2] * c[0] - b[0] * c[2]) + a[2] * (b[0] * c[1] - b[1] * c[0]);
-  const double permanent = std::abs(a[0]) * (std::abs(b[1] * c[2]) + std::abs(b[2] * c[1])) +
-                           std::abs(a[1]) * (std::abs(b[2] * c[0]) + std::abs(b[0] * c[2])) +
-                           std::abs(a[2]) * (std::abs(b[0] * c[1]) + std::abs(b[1] * c[0]));
+    for(double v : *p)
+      if(!std::isfinite(v))
+        return 0;
+  const double det =
+      a[0] * (b[1] * c[2] - b[2] * c[1]) + a[1] * (b[2] * c[0] - b[0] * c[2]) + a[2] * (b[0] * c[1] - b[1] * c[0]);
+  const double permanent = std::abs(a[0]) * (std::abs(b[1] * c[2]) + std::abs(b[2] * c[1]))
+                           + std::abs(a[1]) * (std::abs(b[2] * c[0]) + std::abs(b[0] * c[2]))
+                           + std::abs(a[2]) * (std::abs(b[0] * c[1]) + std::abs(b[1] * c[0]));
   // Shewchuk's bound for orient3d is (7 + 56 eps) eps times the permanent: 1e-14 is ten times that. Near the
   // underflow the bound does not hold, and the exact arithmetic decides.
-  if(std::isfinite(permanent) && permanent > 1e-250 && std::abs(det) > 1e-14 * permanent) return det > 0. ? 1 : -1;
+  if(std::isfinite(permanent) && permanent > 1e-250 && std::abs(det) > 1e-14 * permanent)
+    return det > 0. ? 1 : -1;
   using Q = CGAL::Exact_rational;
   const Q ax(a[0]), ay(a[1]), az(a[2]), bx(b[0]), by(b[1]), bz(b[2]), cx(c[0]), cy(c[1]), cz(c[2]);
   const Q exact = ax * (by * cz - bz * cy) + ay * (bz * cx - bx * cz) + az * (bx * cy - by * cx);
@@ -181,30 +198,45 @@ Exact_certificate exact_certificate(const FaceGraph& g, const SphereMap& sphere)
   Exact_certificate certificate;
   certificate.closed_triangle_mesh = CGAL::is_closed(g) && CGAL::is_triangle_mesh(g) && !faces(g).empty();
   std::vector<std::array<Coordinates, 3>> triangles;
-  for(auto f : faces(g)) {
+  for(auto f : faces(g))
+  {
     std::array<Coordinates, 3> t;
     auto h = halfedge(f, g);
-    for(Coordinates& corner : t) {
+    for(Coordinates& corner : t)
+    {
       const auto& p = get(sphere, target(h, g));
       corner = {CGAL::to_double(p.x()), CGAL::to_double(p.y()), CGAL::to_double(p.z())};
       h = next(h, g);
     }
-    if(sign_of_det(t[0], t[1], t[2]) <= 0) ++certificate.non_positive_faces;
+    if(sign_of_det(t[0], t[1], t[2]) <= 0)
+      ++certificate.non_positive_faces;
     triangles.push_back(t);
   }
-  if(!certificate.closed_triangle_mesh || certificate.non_positive_faces > 0) return certificate;
+  if(!certificate.closed_triangle_mesh || certificate.non_positive_faces > 0)
+    return certificate;
   const Coordinates directions[] = {{0.5773502691896258, 0.4472135954999579, 0.6830127018922193},
                                     {-0.3141592653589793, 0.2718281828459045, -0.8660254037844386},
                                     {0.1234567891234567, -0.9876543219876543, 0.3456789123456789}};
-  for(const Coordinates& d : directions) {
+  for(const Coordinates& d : directions)
+  {
     std::size_t covering = 0;
     bool generic = true;
-    for(const auto& t : triangles) {
+    for(const auto& t : triangles)
+    {
       const int s0 = sign_of_det(t[0], t[1], d), s1 = sign_of_det(t[1], t[2], d), s2 = sign_of_det(t[2], t[0], d);
-      if(s0 == 0 || s1 == 0 || s2 == 0) { generic = false; break; }
-      if(s0 > 0 && s1 > 0 && s2 > 0) ++covering;
+      if(s0 == 0 || s1 == 0 || s2 == 0)
+      {
+        generic = false;
+        break;
+      }
+      if(s0 > 0 && s1 > 0 && s2 > 0)
+        ++covering;
     }
-    if(generic) { certificate.degree = covering; break; }
+    if(generic)
+    {
+      certificate.degree = covering;
+      break;
+    }
   }
   return certificate;
 }
@@ -238,13 +270,16 @@ std::vector<SPI::Vector3> initial_sphere_of(const SPI::Mesh_arrays& arrays, cons
   const SPI::Two_disk_partition partition = SPI::split_into_two_disks(system, 0);
   EXPECT_TRUE(partition.valid);
   std::vector<SPI::Vector3> x;
-  EXPECT_TRUE(SPI::initial_sphere(arrays, system, partition, SP::Weighting::UNIFORM, SP::Default_disk_solver_traits(), x));
-  if(partition_out) *partition_out = partition;
+  EXPECT_TRUE(
+      SPI::initial_sphere(arrays, system, partition, SP::Weighting::UNIFORM, SP::Default_disk_solver_traits(), x));
+  if(partition_out)
+    *partition_out = partition;
   return x;
 }
 
 // Both sides of the partition are topological disks sharing exactly the loop, and no face has two loop edges.
-void expect_two_disks(const SPI::Sphere_system& system, const SPI::Two_disk_partition& partition, const std::string& name)
+void expect_two_disks(const SPI::Sphere_system& system, const SPI::Two_disk_partition& partition,
+                      const std::string& name)
 {
   ASSERT_TRUE(partition.valid) << name;
   const auto& triangles = system.triangles;
@@ -254,23 +289,29 @@ void expect_two_disks(const SPI::Sphere_system& system, const SPI::Two_disk_part
   ASSERT_GE(m, 3u) << name;
   std::set<int> loop_vertices(partition.loop.begin(), partition.loop.end());
   EXPECT_EQ(loop_vertices.size(), m) << name << ": the loop repeats a vertex";
-  for(std::size_t k = 0; k < m; ++k) {
+  for(std::size_t k = 0; k < m; ++k)
+  {
     const int a = partition.loop[k], b = partition.loop[(k + 1) % m];
     loop_edges.insert({std::min(a, b), std::max(a, b)});
   }
-  for(char side : {char(1), char(0)}) {
+  for(char side : {char(1), char(0)})
+  {
     std::set<int> vertices;
     std::set<std::pair<int, int>> edges, cut;
     std::size_t faces = 0;
-    for(std::size_t f = 0; f < triangles.size(); ++f) {
-      if(partition.face_in_disk_a[f] != side) continue;
+    for(std::size_t f = 0; f < triangles.size(); ++f)
+    {
+      if(partition.face_in_disk_a[f] != side)
+        continue;
       ++faces;
       int edges_on_loop = 0;
-      for(int k = 0; k < 3; ++k) {
+      for(int k = 0; k < 3; ++k)
+      {
         const int a = triangles[f][k], b = triangles[f][(k + 1) % 3];
         vertices.insert(a);
         edges.insert({std::min(a, b), std::max(a, b)});
-        if(partition.face_in_disk_a[std::size_t(opposite[3 * f + std::size_t(k)])] != side) {
+        if(partition.face_in_disk_a[std::size_t(opposite[3 * f + std::size_t(k)])] != side)
+        {
           cut.insert({std::min(a, b), std::max(a, b)});
           ++edges_on_loop;
         }
@@ -285,15 +326,25 @@ void expect_two_disks(const SPI::Sphere_system& system, const SPI::Two_disk_part
     std::vector<char> seen(triangles.size(), 0);
     std::vector<std::size_t> stack;
     for(std::size_t f = 0; f < triangles.size() && stack.empty(); ++f)
-      if(partition.face_in_disk_a[f] == side) { stack.push_back(f); seen[f] = 1; }
+      if(partition.face_in_disk_a[f] == side)
+      {
+        stack.push_back(f);
+        seen[f] = 1;
+      }
     std::size_t reached = 0;
-    while(!stack.empty()) {
+    while(!stack.empty())
+    {
       const std::size_t f = stack.back();
       stack.pop_back();
       ++reached;
-      for(int k = 0; k < 3; ++k) {
+      for(int k = 0; k < 3; ++k)
+      {
         const std::size_t g = std::size_t(opposite[3 * f + std::size_t(k)]);
-        if(!seen[g] && partition.face_in_disk_a[g] == side) { seen[g] = 1; stack.push_back(g); }
+        if(!seen[g] && partition.face_in_disk_a[g] == side)
+        {
+          seen[g] = 1;
+          stack.push_back(g);
+        }
       }
     }
     EXPECT_EQ(reached, faces) << name << ": side " << int(side) << " is not connected";
@@ -326,8 +377,14 @@ TEST(CheckInput, NamesEachDefect)
   EXPECT_NE(genus.message.find("genus 1"), std::string::npos) << genus.message;
 
   Arrays two = tetrahedron();
-  for(const Point& p : tetrahedron().points) two.points.push_back(p + Kernel::Vector_3(5, 0, 0));
-  for(auto f : tetrahedron().faces) { for(auto& i : f) i += 4; two.faces.push_back(f); }
+  for(const Point& p : tetrahedron().points)
+    two.points.push_back(p + Kernel::Vector_3(5, 0, 0));
+  for(auto f : tetrahedron().faces)
+  {
+    for(auto& i : f)
+      i += 4;
+    two.faces.push_back(f);
+  }
   EXPECT_EQ(SP::check_polygon_soup(two.points, two.faces).status, SP::Error_code::MULTIPLE_COMPONENTS);
 
   // Two tetrahedra sharing one vertex: closed, edge-manifold, but pinched.
@@ -341,7 +398,7 @@ TEST(CheckInput, NamesEachDefect)
   pinched.faces.push_back({4, 5, 6});
   EXPECT_EQ(SP::check_polygon_soup(pinched.points, pinched.faces).status, SP::Error_code::NON_MANIFOLD_VERTEX);
 
-  Arrays fin = tetrahedron();  // a third face on edge (0, 1)
+  Arrays fin = tetrahedron(); // a third face on edge (0, 1)
   fin.points.push_back(Point(3, 0, 0));
   fin.faces.push_back({0, 1, 4});
   EXPECT_EQ(SP::check_polygon_soup(fin.points, fin.faces).status, SP::Error_code::NON_MANIFOLD_EDGE);
@@ -366,7 +423,8 @@ TEST(CheckInput, NamesEachDefect)
   isolated.points.push_back(Point(9, 9, 9));
   EXPECT_EQ(SP::check_polygon_soup(isolated.points, isolated.faces).status, SP::Error_code::ISOLATED_VERTEX);
 
-  EXPECT_EQ(SP::check_polygon_soup(std::vector<Point>(), std::vector<std::vector<std::size_t>>()).status, SP::Error_code::EMPTY_MESH);
+  EXPECT_EQ(SP::check_polygon_soup(std::vector<Point>(), std::vector<std::vector<std::size_t>>()).status,
+            SP::Error_code::EMPTY_MESH);
 }
 
 // ---------------------------------------------------------------------------------------------------------------
@@ -374,34 +432,39 @@ TEST(CheckInput, NamesEachDefect)
 
 TEST(TwoDiskPartition, TinyMeshes)
 {
-  const std::map<std::string, Arrays> tiny = {{"tetrahedron", tetrahedron()}, {"octahedron", octahedron()},
-                                              {"cube", cube()}, {"icosahedron", icosahedron()}};
-  for(const auto& [name, a] : tiny) {
+  const std::map<std::string, Arrays> tiny = {
+      {"tetrahedron", tetrahedron()}, {"octahedron", octahedron()}, {"cube", cube()}, {"icosahedron", icosahedron()}};
+  for(const auto& [name, a] : tiny)
+  {
     const Mesh m = to_mesh(a);
     const SPI::Mesh_arrays arrays = arrays_of(m);
     const SPI::Sphere_system system = system_of(arrays);
     const SPI::Two_disk_partition partition = SPI::split_into_two_disks(system, 0);
     ASSERT_TRUE(partition.valid) << name;
     // The tetrahedron cannot avoid a face with all its vertices on the loop; the others must be proper disks.
-    if(name == "tetrahedron") continue;
+    if(name == "tetrahedron")
+      continue;
     expect_two_disks(system, partition, name);
   }
 }
 
 TEST(TwoDiskPartition, RealMeshesAndSeeds)
 {
-  const std::vector<std::string> files = {shared_meshes + "/trimesh_fuze.off", shared_meshes + "/npm_bunny.off",
+  const std::vector<std::string> files = {shared_meshes + "/trimesh_fuze.off",     shared_meshes + "/npm_bunny.off",
                                           shared_meshes + "/oscad_pcbvicebar.off", shared_meshes + "/oded_wingnut.off",
-                                          shared_meshes + "/c3d_cheburashka.off", shared_meshes + "/oded_springer.off",
-                                          cgal_data + "/triceratops.off", cgal_data + "/man.off"};
-  for(const std::string& file : files) {
+                                          shared_meshes + "/c3d_cheburashka.off",  shared_meshes + "/oded_springer.off",
+                                          cgal_data + "/triceratops.off",          cgal_data + "/man.off"};
+  for(const std::string& file : files)
+  {
     const SPI::Mesh_arrays arrays = arrays_of(read_mesh(file));
     const SPI::Sphere_system system = system_of(arrays);
-    for(int seed : {0, 1, 7}) {
+    for(int seed : {0, 1, 7})
+    {
       const SPI::Two_disk_partition partition = SPI::split_into_two_disks(system, seed);
       expect_two_disks(system, partition, file + " seed " + std::to_string(seed));
       std::size_t in_a = 0;
-      for(char c : partition.face_in_disk_a) in_a += c;
+      for(char c : partition.face_in_disk_a)
+        in_a += c;
       // Balanced enough to be useful: neither side is a sliver.
       EXPECT_GT(in_a, system.triangles.size() / 10) << file;
       EXPECT_LT(in_a, system.triangles.size() * 9 / 10) << file;
@@ -411,9 +474,11 @@ TEST(TwoDiskPartition, RealMeshesAndSeeds)
 
 TEST(InitialSphere, CircleToEquatorHalvesToHemispheres)
 {
-  for(int k = 0; k < 16; ++k) {
+  for(int k = 0; k < 16; ++k)
+  {
     const double t = 2 * CGAL_PI * k / 16;
-    for(bool inverted : {false, true}) {
+    for(bool inverted : {false, true})
+    {
       const SPI::Vector3 p = SPI::inverse_stereographic(std::cos(t), std::sin(t), inverted);
       EXPECT_NEAR(p.z, 0., 1e-15);
       EXPECT_NEAR(SPI::length(p), 1., 1e-15);
@@ -437,12 +502,17 @@ TEST(InitialSphere, CircleToEquatorHalvesToHemispheres)
   const std::vector<SPI::Vector3> x = initial_sphere_of(arrays, system, &partition);
   std::vector<int> side(x.size(), 0);
   for(std::size_t f = 0; f < system.triangles.size(); ++f)
-    for(int v : system.triangles[f]) side[std::size_t(v)] |= partition.face_in_disk_a[f] ? 1 : 2;
-  for(std::size_t i = 0; i < x.size(); ++i) {
+    for(int v : system.triangles[f])
+      side[std::size_t(v)] |= partition.face_in_disk_a[f] ? 1 : 2;
+  for(std::size_t i = 0; i < x.size(); ++i)
+  {
     EXPECT_NEAR(SPI::length(x[i]), 1., 1e-14);
-    if(side[i] == 3) EXPECT_NEAR(x[i].z, 0., 1e-15);
-    else if(side[i] == 1) EXPECT_GT(x[i].z, 0.);
-    else EXPECT_LT(x[i].z, 0.);
+    if(side[i] == 3)
+      EXPECT_NEAR(x[i].z, 0., 1e-15);
+    else if(side[i] == 1)
+      EXPECT_GT(x[i].z, 0.);
+    else
+      EXPECT_LT(x[i].z, 0.);
   }
   EXPECT_EQ(SPI::certify(system.triangles, x).flipped_faces, 0u);
 }
@@ -452,20 +522,25 @@ TEST(InitialSphere, CircleToEquatorHalvesToHemispheres)
 
 TEST(ProjectedGaussSeidel, StopsWhenTheResidualRises)
 {
-  for(const std::string file : {cgal_data + "/triceratops.off", shared_meshes + "/trimesh_fuze.off"}) {
+  for(const std::string file : {cgal_data + "/triceratops.off", shared_meshes + "/trimesh_fuze.off"})
+  {
     const SPI::Mesh_arrays arrays = arrays_of(read_mesh(file));
     const SPI::Sphere_system system = system_of(arrays);
     std::vector<SPI::Vector3> x = initial_sphere_of(arrays, system);
     SPI::Sphere_state state(system, x);
     std::vector<double> history;
     SPI::Iteration_options options;
-    options.tolerance = 0.;  // never converged: only the rule may stop it
+    options.tolerance = 0.; // never converged: only the rule may stop it
     options.max_gauss_seidel_sweeps = 100000;
-    options.progress = [&](const char*, std::size_t, double residual, std::size_t) { history.push_back(residual); return true; };
+    options.progress = [&](const char*, std::size_t, double residual, std::size_t) {
+      history.push_back(residual);
+      return true;
+    };
     const SPI::Iteration_report report = SPI::projected_gauss_seidel(state, options, started_timer());
     ASSERT_GE(history.size(), 2u) << file;
     EXPECT_LT(report.sweeps, options.max_gauss_seidel_sweeps) << file;
-    for(std::size_t k = 1; k + 1 < history.size(); ++k) EXPECT_LT(history[k], history[k - 1]) << file << " sweep " << k;
+    for(std::size_t k = 1; k + 1 < history.size(); ++k)
+      EXPECT_LT(history[k], history[k - 1]) << file << " sweep " << k;
     EXPECT_GE(history.back(), history[history.size() - 2]) << file;
     // The iterate kept is the last one before the rise.
     EXPECT_DOUBLE_EQ(report.residual, history[history.size() - 2]);
@@ -481,23 +556,29 @@ TEST(LocalNewton, EachStepLowersTheEnergy)
   SPI::Sphere_state state(system, x);
   auto energy = [&] {
     double e = 0.;
-    for(std::size_t i = 0; i < x.size(); ++i) e += SPI::squared_length(SPI::cross(x[i], SPI::weighted_neighbor_sum(system, x, i)));
+    for(std::size_t i = 0; i < x.size(); ++i)
+      e += SPI::squared_length(SPI::cross(x[i], SPI::weighted_neighbor_sum(system, x, i)));
     return e;
   };
   std::size_t moved = 0;
-  for(std::size_t i = 0; i < x.size(); ++i) {
+  for(std::size_t i = 0; i < x.size(); ++i)
+  {
     const double before_ring = SPI::one_ring_energy(state, x, i, x[i]);
     const double before = energy();
     const SPI::Vector3 old = x[i];
-    if(SPI::local_newton_step(state, i, true)) {
+    if(SPI::local_newton_step(state, i, true))
+    {
       ++moved;
       EXPECT_LT(SPI::one_ring_energy(state, x, i, x[i]), before_ring) << "vertex " << i;
       // The one-ring energy holds every term that depends on x_i, so the total drops by the same amount.
       EXPECT_NEAR(before - energy(), before_ring - SPI::one_ring_energy(state, x, i, x[i]), 1e-12 * before + 1e-20);
-    } else {
+    }
+    else
+    {
       EXPECT_TRUE(old == x[i]);
     }
-    if(i > 300) break;
+    if(i > 300)
+      break;
   }
   EXPECT_GT(moved, 100u);
   EXPECT_EQ(state.invalid_faces(), 0u);
@@ -519,11 +600,12 @@ TEST(Imbalance, ScaleFreeWithARoundingFloor)
   const SPI::Imbalance_summary moved = SPI::summarize_imbalance(system, x, 1e-6);
   EXPECT_GT(moved.max, 1e-3);
   EXPECT_FALSE(moved.balanced());
-  EXPECT_GE(moved.unbalanced_vertices, 3u);  // the moved vertex and the neighbours it pulls off balance
+  EXPECT_GE(moved.unbalanced_vertices, 3u); // the moved vertex and the neighbours it pulls off balance
   // Scale-free: the same relative displacement at 1e-6 of the size gives the same e.
   auto ring_at = [&](double scale, double offset) {
     std::vector<SPI::Vector3> y = arrays.points;
-    for(int v : {0, 1, 2, 3}) {
+    for(int v : {0, 1, 2, 3})
+    {
       SPI::Vector3 p(scale * arrays.points[std::size_t(v)].x, scale * arrays.points[std::size_t(v)].y, 1.);
       y[std::size_t(v)] = p * (1. / SPI::length(p));
     }
@@ -562,25 +644,30 @@ TEST(Imbalance, RadialEdgesDoNotHideACollapse)
   const SPI::Vector3 pole(0.90011527385607193, 0., -0.43565180336021642);
   const SPI::Vector3 off1(0., 1., 0.), off2 = SPI::cross(pole, off1);
   // 4e-6 as the solver left it; 1e-14, where 1 - c^2/4 of the antipodal chord is all rounding.
-  for(double size : {4e-6, 1e-14}) {
+  for(double size : {4e-6, 1e-14})
+  {
     std::vector<SPI::Vector3> x(4);
     x[0] = pole;
-    for(int k = 1; k < 4; ++k) {
+    for(int k = 1; k < 4; ++k)
+    {
       const double angle = 2. * CGAL_PI * k / 3.;
       SPI::Vector3 p = -pole + size * (std::cos(angle) * off1 + std::sin(angle) * off2);
       x[std::size_t(k)] = p * (1. / SPI::length(p));
     }
     // The cluster's order that makes every triangle positive.
-    if(!SPI::certify(system.triangles, x).bijective) std::swap(x[1], x[2]);
+    if(!SPI::certify(system.triangles, x).bijective)
+      std::swap(x[1], x[2]);
     ASSERT_TRUE(SPI::certify(system.triangles, x).bijective) << size;
     const SPI::Imbalance_summary collapsed = SPI::summarize_imbalance(system, x, 1e-6);
     EXPECT_FALSE(collapsed.balanced()) << size;
     EXPECT_GE(collapsed.unbalanced_vertices, 3u) << size;
-    if(size > 1e-10) EXPECT_GT(collapsed.max, 1e-2);
+    if(size > 1e-10)
+      EXPECT_GT(collapsed.max, 1e-2);
   }
   // The regular tetrahedron, projected, is balanced.
   std::vector<SPI::Vector3> regular = arrays.points;
-  for(SPI::Vector3& p : regular) p *= 1. / SPI::length(p);
+  for(SPI::Vector3& p : regular)
+    p *= 1. / SPI::length(p);
   ASSERT_TRUE(SPI::certify(system.triangles, regular).bijective);
   EXPECT_LT(SPI::summarize_imbalance(system, regular, 1e-6).max, 1e-12);
 }
@@ -595,9 +682,11 @@ TEST(GlobalNewton, LowersTheResidualAndKeepsEveryTrianglePositive)
   SPI::Global_newton newton(system, tuning);
   double residual = state.refresh_sums();
   const double start = residual;
-  for(int k = 0; k < 5; ++k) {
+  for(int k = 0; k < 5; ++k)
+  {
     const double before = residual;
-    if(!newton.step(state, residual)) break;
+    if(!newton.step(state, residual))
+      break;
     EXPECT_LT(residual, before);
     EXPECT_EQ(state.invalid_faces(), 0u);
   }
@@ -607,10 +696,11 @@ TEST(GlobalNewton, LowersTheResidualAndKeepsEveryTrianglePositive)
 
 TEST(Mobius, BoostIsTheFlowOfTheBoostField)
 {
-  const SPI::Vector3 a(0.36, -0.48, 0.8);  // a unit axis
+  const SPI::Vector3 a(0.36, -0.48, 0.8); // a unit axis
   std::mt19937 random(7);
   std::uniform_real_distribution<double> uniform(-1., 1.);
-  for(int k = 0; k < 200; ++k) {
+  for(int k = 0; k < 200; ++k)
+  {
     SPI::Vector3 x(uniform(random), uniform(random), uniform(random));
     x *= 1. / SPI::length(x);
     // On the sphere, and a group along one axis: boost(boost(x, s a), t a) = boost(x, (s + t) a).
@@ -625,7 +715,7 @@ TEST(Mobius, BoostIsTheFlowOfTheBoostField)
   }
   // A small triangle keeps its orientation.
   const SPI::Vector3 p(1, 0, 0), q = SPI::Vector3(1, 1e-3, 0) * (1. / std::sqrt(1. + 1e-6)),
-                     r = SPI::Vector3(1, 0, 1e-3) * (1. / std::sqrt(1. + 1e-6));
+                                 r = SPI::Vector3(1, 0, 1e-3) * (1. / std::sqrt(1. + 1e-6));
   ASSERT_TRUE(SPI::is_positive(p, q, r));
   EXPECT_TRUE(SPI::is_positive(SPI::apply_boost(p, 2. * a), SPI::apply_boost(q, 2. * a), SPI::apply_boost(r, 2. * a)));
 }
@@ -656,22 +746,28 @@ TEST(Mobius, BoostGradientJacobianMatchesFiniteDifferences)
   const SPI::Sphere_system system = system_of(arrays);
   const std::vector<double> w = SPI::symmetric_raw_weights(system);
   std::vector<SPI::Vector3> x = initial_sphere_of(arrays, system);
-  for(int map = 0; map < 2; ++map) {
+  for(int map = 0; map < 2; ++map)
+  {
     if(map == 1)
-      for(SPI::Vector3& p : x) p = SPI::apply_boost(p, SPI::Vector3(0.3, -0.2, 0.5));
+      for(SPI::Vector3& p : x)
+        p = SPI::apply_boost(p, SPI::Vector3(0.3, -0.2, 0.5));
     const Eigen::Matrix3d exact = SPI::boost_gradient_jacobian(system, w, x);
     Eigen::Matrix3d differences;
     const double h = 1e-5;
     std::vector<SPI::Vector3> plus(x.size()), minus(x.size());
-    for(int l = 0; l < 3; ++l) {
+    for(int l = 0; l < 3; ++l)
+    {
       const SPI::Vector3 axis(l == 0 ? h : 0., l == 1 ? h : 0., l == 2 ? h : 0.);
-      for(std::size_t i = 0; i < x.size(); ++i) {
+      for(std::size_t i = 0; i < x.size(); ++i)
+      {
         plus[i] = SPI::apply_boost(x[i], axis);
         minus[i] = SPI::apply_boost(x[i], -1. * axis);
       }
       differences.col(l) = (SPI::boost_gradient(system, plus) - SPI::boost_gradient(system, minus)) / (2. * h);
     }
-    EXPECT_LT((exact - differences).norm(), 1e-6 * exact.norm()) << "map " << map << "\nexact\n" << exact << "\ndifferences\n" << differences;
+    EXPECT_LT((exact - differences).norm(), 1e-6 * exact.norm()) << "map " << map << "\nexact\n"
+                                                                 << exact << "\ndifferences\n"
+                                                                 << differences;
   }
 }
 
@@ -679,17 +775,22 @@ TEST(Mobius, BoostGradientJacobianMatchesFiniteDifferences)
 // residual falls at least quadratically once small.
 TEST(MobiusNewton, ConvergesQuadratically)
 {
-  for(const std::string file : {cgal_data + "/triceratops.off", shared_meshes + "/npm_bunny.off", shared_meshes + "/trimesh_fuze.off"}) {
+  for(const std::string file :
+      {cgal_data + "/triceratops.off", shared_meshes + "/npm_bunny.off", shared_meshes + "/trimesh_fuze.off"})
+  {
     const SPI::Mesh_arrays arrays = arrays_of(read_mesh(file));
     const SPI::Sphere_system system = system_of(arrays);
     std::vector<SPI::Vector3> x = initial_sphere_of(arrays, system);
     SPI::Sphere_state state(system, x);
     SPI::Iteration_options options;
     options.tolerance = 1e-15;
-    options.convergence_test = SP::Convergence_test::PAPER_RESIDUAL;  // Res, whose quadratic decrease is checked
+    options.convergence_test = SP::Convergence_test::PAPER_RESIDUAL; // Res, whose quadratic decrease is checked
     SPI::projected_gauss_seidel(state, options, started_timer());
     std::vector<double> history;
-    options.progress = [&](const char*, std::size_t, double residual, std::size_t) { history.push_back(residual); return true; };
+    options.progress = [&](const char*, std::size_t, double residual, std::size_t) {
+      history.push_back(residual);
+      return true;
+    };
     SPI::Mobius_newton_statistics statistics;
     const SPI::Iteration_report report = SPI::mobius_newton(state, options, started_timer(), &statistics);
     EXPECT_TRUE(report.converged) << file;
@@ -699,7 +800,8 @@ TEST(MobiusNewton, ConvergesQuadratically)
     EXPECT_LT(residuals.max_tangential, 1e-12) << file;
     EXPECT_TRUE(SPI::certify(system.triangles, x).bijective) << file;
     for(std::size_t k = 1; k < history.size(); ++k)
-      if(history[k - 1] < 1e-8 && history[k] > 1e-14) EXPECT_LT(history[k], 1e3 * history[k - 1] * history[k - 1]) << file << " step " << k;
+      if(history[k - 1] < 1e-8 && history[k] > 1e-14)
+        EXPECT_LT(history[k], 1e3 * history[k - 1] * history[k - 1]) << file << " step " << k;
   }
 }
 
@@ -721,13 +823,17 @@ TEST(BrainSurfaces, FreeSurferRoundTripIsByteIdentical)
   EXPECT_TRUE(out.str() == original);
   // Not a FreeSurfer file: a precise status.
   std::vector<Point> none;
-  EXPECT_EQ(SP::IO::read_FreeSurfer_surface(cgal_data + "/triceratops.off", none, triangles).status, SP::IO::File_status::UNKNOWN_FORMAT);
+  EXPECT_EQ(SP::IO::read_FreeSurfer_surface(cgal_data + "/triceratops.off", none, triangles).status,
+            SP::IO::File_status::UNKNOWN_FORMAT);
 }
 
 // A stop signal that arrives inside a METIS call waits for the call to return (METIS would trap SIGTERM and lose
 // it): within the guard the application's handler is not called, after it the signal arrives exactly once.
 volatile std::sig_atomic_t stop_signals_seen = 0;
-extern "C" void count_stop_signal(int) { stop_signals_seen = stop_signals_seen + 1; }
+extern "C" void count_stop_signal(int)
+{
+  stop_signals_seen = stop_signals_seen + 1;
+}
 
 TEST(DeferredStopSignals, NotLostAroundMetis)
 {
@@ -752,19 +858,28 @@ TEST(DeferredStopSignals, NotLostAroundMetis)
 TEST(KrylovSolvers, MinresSolvesAnIndefiniteSystem)
 {
   const int n = 400;
-  const double shift = 0.05;  // eigenvalues 2 - 2 cos(k pi / (n + 1)) - shift: about 29 of them negative
+  const double shift = 0.05; // eigenvalues 2 - 2 cos(k pi / (n + 1)) - shift: about 29 of them negative
   auto apply = [&](const double* in, double* out) {
-    for(int i = 0; i < n; ++i) out[i] = (2. - shift) * in[i] - (i > 0 ? in[i - 1] : 0.) - (i + 1 < n ? in[i + 1] : 0.);
+    for(int i = 0; i < n; ++i)
+      out[i] = (2. - shift) * in[i] - (i > 0 ? in[i - 1] : 0.) - (i + 1 < n ? in[i + 1] : 0.);
   };
-  auto jacobi = [&](const double* in, double* out) { for(int i = 0; i < n; ++i) out[i] = in[i] / 2.; };
+  auto jacobi = [&](const double* in, double* out) {
+    for(int i = 0; i < n; ++i)
+      out[i] = in[i] / 2.;
+  };
   std::vector<double> b(n), x(n), r(n);
-  for(int i = 0; i < n; ++i) b[i] = std::sin(0.1 * i) + (i % 7 == 0 ? 1. : 0.);
+  for(int i = 0; i < n; ++i)
+    b[i] = std::sin(0.1 * i) + (i % 7 == 0 ? 1. : 0.);
   SPI::AMG::Krylov_workspace workspace;
   const SPI::AMG::Krylov_result result = SPI::AMG::minres(apply, jacobi, b.data(), x.data(), n, 1e-10, 2000, workspace);
   EXPECT_TRUE(result.converged);
   apply(x.data(), r.data());
   double error = 0., norm_b = 0.;
-  for(int i = 0; i < n; ++i) { error += (r[i] - b[i]) * (r[i] - b[i]); norm_b += b[i] * b[i]; }
+  for(int i = 0; i < n; ++i)
+  {
+    error += (r[i] - b[i]) * (r[i] - b[i]);
+    norm_b += b[i] * b[i];
+  }
   EXPECT_LT(std::sqrt(error / norm_b), 1e-8);
 }
 
@@ -784,7 +899,8 @@ TEST(TangentKrylovSystem, FullStepsConvergeWithFewMinresIterations)
     imbalance.push_back(SPI::summarize_imbalance(system, x, options.tolerance).max);
     return true;
   };
-  const SPI::Iteration_report report = SPI::mobius_newton(state, options, started_timer(), nullptr, SPI::Solver_tuning().free_newton_patience, true);
+  const SPI::Iteration_report report =
+      SPI::mobius_newton(state, options, started_timer(), nullptr, SPI::Solver_tuning().free_newton_patience, true);
   ASSERT_TRUE(report.converged);
   EXPECT_GT(report.linear_iterations, 0u);
   EXPECT_LE(report.linear_iterations, 25 * report.sweeps);
@@ -801,7 +917,8 @@ TEST(TangentKrylovSystem, FullStepsConvergeWithFewMinresIterations)
 // bijective: each removed vertex is inserted where its fan is positive (up to rounding on the tiniest triangles).
 TEST(MeshCoarsening, CoarseningAndProlongationKeepGenusZeroAndPositiveFans)
 {
-  for(const char* name : {"/gary_david.off", "/oded_springer.off"}) {
+  for(const char* name : {"/gary_david.off", "/oded_springer.off"})
+  {
     const SPI::Mesh_arrays arrays = arrays_of(read_mesh(shared_meshes + name));
     const std::size_t n = arrays.points.size();
     const SPI::Coarsening coarsening = SPI::coarsen_mesh(arrays, n / 4);
@@ -809,8 +926,9 @@ TEST(MeshCoarsening, CoarseningAndProlongationKeepGenusZeroAndPositiveFans)
     EXPECT_EQ(kept + coarsening.removed.size(), n) << name;
     EXPECT_LE(kept, n / 4 + n / 50) << name << ": the collapses stopped early";
     EXPECT_EQ(coarsening.coarse.triangles.size(), 2 * kept - 4) << name << ": Euler's formula for genus 0";
-    SPI::Mesh_arrays coarse_soup = coarsening.coarse;  // the coarse mesh has triangles only: the checks read polygons
-    for(const auto& t : coarse_soup.triangles) coarse_soup.polygons.push_back({t[0], t[1], t[2]});
+    SPI::Mesh_arrays coarse_soup = coarsening.coarse; // the coarse mesh has triangles only: the checks read polygons
+    for(const auto& t : coarse_soup.triangles)
+      coarse_soup.polygons.push_back({t[0], t[1], t[2]});
     const SP::Input_check check = SPI::check_mesh_arrays(coarse_soup);
     EXPECT_TRUE(check) << name << ": " << check.message;
     SPI::Sphere_system coarse_system = system_of(coarsening.coarse);
@@ -818,7 +936,9 @@ TEST(MeshCoarsening, CoarseningAndProlongationKeepGenusZeroAndPositiveFans)
     SPI::Pipeline_options options;
     options.multilevel = false;
     const SP::Default_disk_solver_traits solver;
-    const SP::Result coarse = SPI::Sphere_mapper<SP::Default_disk_solver_traits>(coarsening.coarse, coarse_system, options, solver).map(coarse_x);
+    const SP::Result coarse =
+        SPI::Sphere_mapper<SP::Default_disk_solver_traits>(coarsening.coarse, coarse_system, options, solver)
+            .map(coarse_x);
     ASSERT_EQ(coarse.status, SP::Error_code::OK) << name << ": " << coarse.message;
     std::vector<SPI::Vector3> x;
     const std::size_t folded = SPI::prolong(coarsening, coarse_x, x);
@@ -836,18 +956,23 @@ TEST(MultilevelStart, ConvergesAndReportsItsLevels)
 {
   Mesh mesh = read_mesh(shared_meshes + "/brainspace_conte69_32k_lh.off");
   ASSERT_GE(num_vertices(mesh), SPI::Solver_tuning().multilevel_min_vertices);
-  for(const bool multilevel : {true, false}) {
+  for(const bool multilevel : {true, false})
+  {
     auto sphere = mesh.add_property_map<Mesh::Vertex_index, Point>(multilevel ? "v:ml" : "v:two", Point()).first;
     const SP::Result result = SP::spherical_parameterize(mesh, sphere, SP::parameters::multilevel(multilevel));
     ASSERT_EQ(result.status, SP::Error_code::OK) << result.message;
     EXPECT_LE(result.max_imbalance, 1e-6);
     EXPECT_TRUE(exact_certificate(mesh, sphere).bijective());
-    if(multilevel) {
+    if(multilevel)
+    {
       ASSERT_GE(result.levels.size(), 2u);
       EXPECT_EQ(result.levels.back().vertices, num_vertices(mesh));
-      for(std::size_t l = 1; l < result.levels.size(); ++l) EXPECT_LT(result.levels[l - 1].vertices, result.levels[l].vertices);
+      for(std::size_t l = 1; l < result.levels.size(); ++l)
+        EXPECT_LT(result.levels[l - 1].vertices, result.levels[l].vertices);
       EXPECT_EQ(result.levels.back().newton_steps, result.newton.iterations);
-    } else {
+    }
+    else
+    {
       EXPECT_TRUE(result.levels.empty());
     }
   }
@@ -880,7 +1005,7 @@ TEST(WeightContinuation, FromTutteWeights)
     EXPECT_FALSE(report.reached);
     EXPECT_GT(report.last_parameter, 0.5);
     EXPECT_LT(report.last_parameter, 0.95);
-    EXPECT_TRUE(SPI::certify(system.triangles, x).bijective);  // the solution at the last parameter reached
+    EXPECT_TRUE(SPI::certify(system.triangles, x).bijective); // the solution at the last parameter reached
   }
 }
 
@@ -892,13 +1017,17 @@ namespace {
 
 // The maps the derivative tests linearize at: sphere966 projected radially from its centroid (a smooth, nearly
 // balanced map), or the two-disk initial guess (thin triangles, far from balanced).
-std::vector<SPI::Vector3> derivative_test_map(const std::string& name, const SPI::Mesh_arrays& arrays, const SPI::Sphere_system& system)
+std::vector<SPI::Vector3> derivative_test_map(const std::string& name, const SPI::Mesh_arrays& arrays,
+                                              const SPI::Sphere_system& system)
 {
   std::vector<SPI::Vector3> x;
-  if(name != "sphere966.off") return initial_sphere_of(arrays, system);
+  if(name != "sphere966.off")
+    return initial_sphere_of(arrays, system);
   SPI::Vector3 centre;
-  for(const SPI::Vector3& p : arrays.points) centre += p * (1. / static_cast<double>(arrays.points.size()));
-  for(const SPI::Vector3& p : arrays.points) x.push_back((p - centre) * (1. / SPI::length(p - centre)));
+  for(const SPI::Vector3& p : arrays.points)
+    centre += p * (1. / static_cast<double>(arrays.points.size()));
+  for(const SPI::Vector3& p : arrays.points)
+    x.push_back((p - centre) * (1. / SPI::length(p - centre)));
   return x;
 }
 
@@ -907,8 +1036,10 @@ std::vector<SPI::Vector3> moved_along(const std::vector<SPI::Vector3>& x, const 
                                       const std::vector<SPI::Vector3>& t2, const Eigen::VectorXd& d, double h)
 {
   std::vector<SPI::Vector3> y(x.size());
-  for(std::size_t i = 0; i < x.size(); ++i) {
-    const SPI::Vector3 v = d[static_cast<Eigen::Index>(2 * i)] * t1[i] + d[static_cast<Eigen::Index>(2 * i + 1)] * t2[i];
+  for(std::size_t i = 0; i < x.size(); ++i)
+  {
+    const SPI::Vector3 v =
+        d[static_cast<Eigen::Index>(2 * i)] * t1[i] + d[static_cast<Eigen::Index>(2 * i + 1)] * t2[i];
     const SPI::Vector3 p = x[i] + h * v;
     y[i] = p * (1. / SPI::length(p));
   }
@@ -919,7 +1050,8 @@ std::vector<SPI::Vector3> moved_along(const std::vector<SPI::Vector3>& x, const 
 
 TEST(ConstrainedBalance, HessianMatchesFiniteDifferences)
 {
-  for(const std::string name : {"sphere966.off", "triceratops.off"}) {
+  for(const std::string name : {"sphere966.off", "triceratops.off"})
+  {
     const SPI::Mesh_arrays arrays = arrays_of(read_mesh(cgal_data + "/" + name));
     const SPI::Sphere_system system = system_of(arrays, SP::Weighting::COTANGENT);
     const std::vector<SPI::Vector3> x = derivative_test_map(name, arrays, system);
@@ -927,7 +1059,8 @@ TEST(ConstrainedBalance, HessianMatchesFiniteDifferences)
     SPI::Constrained_balance balance(system);
     balance.set_face_scales(x);
     const std::size_t n = x.size();
-    for(double mu : {0., 1e-2, 1.}) {
+    for(double mu : {0., 1e-2, 1.})
+    {
       std::vector<SPI::Vector3> g, g_plus, g_minus;
       std::vector<double> l;
       ASSERT_TRUE(balance.gradient(x, mu, g, l));
@@ -937,20 +1070,22 @@ TEST(ConstrainedBalance, HessianMatchesFiniteDifferences)
       std::mt19937 random(7);
       std::normal_distribution<double> normal;
       Eigen::VectorXd d(static_cast<Eigen::Index>(2 * n));
-      for(Eigen::Index k = 0; k < d.size(); ++k) d[k] = normal(random);
+      for(Eigen::Index k = 0; k < d.size(); ++k)
+        d[k] = normal(random);
       const Eigen::VectorXd product = hessian * d;
-      const double h = 1e-11;  // below the smallest triangles of the guess, whose barrier terms are the least linear
+      const double h = 1e-11; // below the smallest triangles of the guess, whose barrier terms are the least linear
       const std::vector<SPI::Vector3> plus = moved_along(x, t1, t2, d, h), minus = moved_along(x, t1, t2, d, -h);
       ASSERT_TRUE(balance.gradient(plus, mu, g_plus, l));
       ASSERT_TRUE(balance.gradient(minus, mu, g_minus, l));
       double error = 0., norm = 0.;
-      for(std::size_t i = 0; i < n; ++i) {
+      for(std::size_t i = 0; i < n; ++i)
+      {
         const SPI::Vector3 difference = (g_plus[i] - g_minus[i]) * (0.5 / h);
         const double a = SPI::dot(t1[i], difference) - product[static_cast<Eigen::Index>(2 * i)];
         const double b = SPI::dot(t2[i], difference) - product[static_cast<Eigen::Index>(2 * i + 1)];
         error += a * a + b * b;
-        norm += product[static_cast<Eigen::Index>(2 * i)] * product[static_cast<Eigen::Index>(2 * i)] +
-                product[static_cast<Eigen::Index>(2 * i + 1)] * product[static_cast<Eigen::Index>(2 * i + 1)];
+        norm += product[static_cast<Eigen::Index>(2 * i)] * product[static_cast<Eigen::Index>(2 * i)]
+                + product[static_cast<Eigen::Index>(2 * i + 1)] * product[static_cast<Eigen::Index>(2 * i + 1)];
       }
       EXPECT_LT(std::sqrt(error / norm), 1e-4) << name << ", mu " << mu;
     }
@@ -962,9 +1097,11 @@ TEST(ConstrainedBalance, HessianMatchesFiniteDifferences)
 // and without the barrier; and the gradient J^T r against the closed form of summarize_stationarity().
 TEST(ImbalanceLeastSquares, JacobianAndGradientMatchFiniteDifferences)
 {
-  for(const std::string name : {"sphere966.off", "triceratops.off"}) {
+  for(const std::string name : {"sphere966.off", "triceratops.off"})
+  {
     const SPI::Mesh_arrays arrays = arrays_of(read_mesh(cgal_data + "/" + name));
-    for(SP::Weighting weighting : {SP::Weighting::MEAN_VALUE, SP::Weighting::COTANGENT}) {
+    for(SP::Weighting weighting : {SP::Weighting::MEAN_VALUE, SP::Weighting::COTANGENT})
+    {
       const SPI::Sphere_system system = system_of(arrays, weighting);
       const std::vector<SPI::Vector3> x = derivative_test_map(name, arrays, system);
       ASSERT_EQ(SPI::certify(system.triangles, x).flipped_faces, 0u) << name;
@@ -972,14 +1109,17 @@ TEST(ImbalanceLeastSquares, JacobianAndGradientMatchFiniteDifferences)
       SPI::Imbalance_least_squares problem(system);
       problem.evaluate(x, 0.);
       problem.set_face_scales(x);
-      for(double mu : {0., 1e-2}) {
-        const std::string label = name + (weighting == SP::Weighting::MEAN_VALUE ? ", mean value" : ", cotangent") + ", mu " + std::to_string(mu);
+      for(double mu : {0., 1e-2})
+      {
+        const std::string label = name + (weighting == SP::Weighting::MEAN_VALUE ? ", mean value" : ", cotangent")
+                                  + ", mu " + std::to_string(mu);
         problem.evaluate(x, mu);
         problem.linearize(x, mu);
         const Eigen::VectorXd gradient = problem.gradient();
         const Eigen::SparseMatrix<double> jacobian = problem.jacobian();
         const std::vector<SPI::Vector3> t1 = problem.frame1(), t2 = problem.frame2();
-        if(mu == 0.) {
+        if(mu == 0.)
+        {
           const SPI::Imbalance_summary closed_form = SPI::summarize_stationarity(system, x, 1e-6);
           const SPI::Imbalance_summary from_jacobian = problem.stationarity(1e-6);
           EXPECT_NEAR(closed_form.max, from_jacobian.max, 1e-9 * closed_form.max) << label;
@@ -988,26 +1128,30 @@ TEST(ImbalanceLeastSquares, JacobianAndGradientMatchFiniteDifferences)
         std::mt19937 random(11);
         std::normal_distribution<double> normal;
         Eigen::VectorXd d(static_cast<Eigen::Index>(2 * n));
-        for(Eigen::Index k = 0; k < d.size(); ++k) d[k] = normal(random);
-        const double h = 1e-11;  // below the smallest triangles of the guess
+        for(Eigen::Index k = 0; k < d.size(); ++k)
+          d[k] = normal(random);
+        const double h = 1e-11; // below the smallest triangles of the guess
         const std::vector<SPI::Vector3> plus = moved_along(x, t1, t2, d, h), minus = moved_along(x, t1, t2, d, -h);
         // The directional derivative of Phi_mu.
         const double slope = (problem.evaluate(plus, mu) - problem.evaluate(minus, mu)) * (0.5 / h);
         EXPECT_NEAR(slope, gradient.dot(d), 1e-4 * gradient.norm() * d.norm()) << label;
         // J d against the differences of the r_i, each in the tangent frame at x_i.
-        if(mu == 0.) {
+        if(mu == 0.)
+        {
           SPI::Least_squares_terms at_plus, at_minus;
           SPI::compute_least_squares_terms(system, plus, at_plus);
           SPI::compute_least_squares_terms(system, minus, at_minus);
           const Eigen::VectorXd product = jacobian * d;
           double error = 0., norm = 0.;
-          for(std::size_t i = 0; i < n; ++i) {
-            const SPI::Vector3 difference = (at_plus.force[i] * (1. / at_plus.scale[i]) - at_minus.force[i] * (1. / at_minus.scale[i])) * (0.5 / h);
+          for(std::size_t i = 0; i < n; ++i)
+          {
+            const SPI::Vector3 difference =
+                (at_plus.force[i] * (1. / at_plus.scale[i]) - at_minus.force[i] * (1. / at_minus.scale[i])) * (0.5 / h);
             const double a = SPI::dot(t1[i], difference) - product[static_cast<Eigen::Index>(2 * i)];
             const double b = SPI::dot(t2[i], difference) - product[static_cast<Eigen::Index>(2 * i + 1)];
             error += a * a + b * b;
-            norm += product[static_cast<Eigen::Index>(2 * i)] * product[static_cast<Eigen::Index>(2 * i)] +
-                    product[static_cast<Eigen::Index>(2 * i + 1)] * product[static_cast<Eigen::Index>(2 * i + 1)];
+            norm += product[static_cast<Eigen::Index>(2 * i)] * product[static_cast<Eigen::Index>(2 * i)]
+                    + product[static_cast<Eigen::Index>(2 * i + 1)] * product[static_cast<Eigen::Index>(2 * i + 1)];
           }
           EXPECT_LT(std::sqrt(error / norm), 1e-4) << label;
         }
@@ -1019,7 +1163,8 @@ TEST(ImbalanceLeastSquares, JacobianAndGradientMatchFiniteDifferences)
 TEST(AdmissibleWeights, AreSymmetricAndPositive)
 {
   const SPI::Mesh_arrays arrays = arrays_of(read_mesh(cgal_data + "/triceratops.off"));
-  for(SP::Weighting weighting : {SP::Weighting::COTANGENT, SP::Weighting::MEAN_VALUE}) {
+  for(SP::Weighting weighting : {SP::Weighting::COTANGENT, SP::Weighting::MEAN_VALUE})
+  {
     SPI::Sphere_system system = system_of(arrays, weighting);
     EXPECT_FALSE(system.symmetric && weighting == SP::Weighting::MEAN_VALUE);
     std::size_t negative = 0;
@@ -1029,9 +1174,11 @@ TEST(AdmissibleWeights, AreSymmetricAndPositive)
     const std::size_t clamped = SPI::make_weights_admissible(system);
     EXPECT_GE(clamped, negative);
     EXPECT_TRUE(system.symmetric);
-    for(std::size_t i = 0; i < system.number_of_vertices; ++i) {
+    for(std::size_t i = 0; i < system.number_of_vertices; ++i)
+    {
       double sum = 0.;
-      for(std::size_t k = system.offsets[i]; k < system.offsets[i + 1]; ++k) {
+      for(std::size_t k = system.offsets[i]; k < system.offsets[i + 1]; ++k)
+      {
         EXPECT_GT(system.weights[k], 0.);
         sum += system.weights[k];
         const std::size_t j = std::size_t(system.neighbors[k]);
@@ -1049,20 +1196,26 @@ TEST(Certificate, FilteredOrientationIsExact)
   std::mt19937_64 random(1);
   std::uniform_real_distribution<double> uniform(-1., 1.);
   using P = Kernel::Point_3;
-  for(int k = 0; k < 200000; ++k) {
-    SPI::Vector3 a(uniform(random), uniform(random), uniform(random)), b(uniform(random), uniform(random), uniform(random));
+  for(int k = 0; k < 200000; ++k)
+  {
+    SPI::Vector3 a(uniform(random), uniform(random), uniform(random)),
+        b(uniform(random), uniform(random), uniform(random));
     a *= 1. / SPI::length(a);
     b *= 1. / SPI::length(b);
     SPI::Vector3 c(uniform(random), uniform(random), uniform(random));
     const double t = uniform(random);
-    if(k % 4 == 1) c = t * a + (1. - t) * b;                                        // coplanar with the origin
-    if(k % 4 == 2) c = t * a + (1. - t) * b + 1e-15 * c;
-    if(k % 4 == 3) {                                                                 // tiny triangles
+    if(k % 4 == 1)
+      c = t * a + (1. - t) * b; // coplanar with the origin
+    if(k % 4 == 2)
+      c = t * a + (1. - t) * b + 1e-15 * c;
+    if(k % 4 == 3)
+    { // tiny triangles
       const double e = std::ldexp(1., -(k % 60));
       b = a + e * b;
       c = a + e * c;
     }
-    const bool exact = CGAL::orientation(P(CGAL::ORIGIN), P(a.x, a.y, a.z), P(b.x, b.y, b.z), P(c.x, c.y, c.z)) == CGAL::POSITIVE;
+    const bool exact =
+        CGAL::orientation(P(CGAL::ORIGIN), P(a.x, a.y, a.z), P(b.x, b.y, b.z), P(c.x, c.y, c.z)) == CGAL::POSITIVE;
     ASSERT_EQ(SPI::is_positive(a, b, c), exact) << k;
   }
   const double nan = std::numeric_limits<double>::quiet_NaN();
@@ -1076,7 +1229,8 @@ TEST(Certificate, DetectsFlipsAndDoubleCovers)
 {
   Mesh m = to_mesh(icosahedron());
   auto sphere = m.add_property_map<Mesh::Vertex_index, Point>("v:sphere").first;
-  for(auto v : m.vertices()) {
+  for(auto v : m.vertices())
+  {
     const Point& p = m.point(v);
     const double r = std::sqrt(CGAL::to_double(Kernel::Vector_3(CGAL::ORIGIN, p).squared_length()));
     sphere[v] = Point(p.x() / r, p.y() / r, p.z() / r);
@@ -1090,7 +1244,8 @@ TEST(Certificate, DetectsFlipsAndDoubleCovers)
   EXPECT_LT(d.log_area_ratio_stddev, 1e-9);
 
   // A mirror image: every triangle negative.
-  for(auto v : m.vertices()) sphere[v] = Point(sphere[v].x(), sphere[v].y(), -sphere[v].z());
+  for(auto v : m.vertices())
+    sphere[v] = Point(sphere[v].x(), sphere[v].y(), -sphere[v].z());
   c = SP::certify_sphere_map(m, sphere);
   EXPECT_FALSE(c.bijective);
   EXPECT_EQ(c.flipped_faces, m.number_of_faces());
@@ -1104,7 +1259,8 @@ TEST(Certificate, DetectsFlipsAndDoubleCovers)
   const std::size_t equator = 7;
   Arrays bipyramid;
   bipyramid.points = {Point(0, 0, 1), Point(0, 0, -1)};
-  for(std::size_t k = 0; k < equator; ++k) {
+  for(std::size_t k = 0; k < equator; ++k)
+  {
     const double longitude = 2 * CGAL_PI * double(k) / double(equator);
     bipyramid.points.emplace_back(std::cos(longitude), std::sin(longitude), 0.);
     bipyramid.faces.push_back({0, 2 + k, 2 + (k + 1) % equator});
@@ -1114,9 +1270,14 @@ TEST(Certificate, DetectsFlipsAndDoubleCovers)
   ASSERT_TRUE(SP::check_input(twice));
   auto doubled = twice.add_property_map<Mesh::Vertex_index, Point>("v:sphere").first;
   std::size_t k = 0;
-  for(auto v : twice.vertices()) {
+  for(auto v : twice.vertices())
+  {
     const Point& p = twice.point(v);
-    if(p.z() != 0.) { doubled[v] = p; continue; }
+    if(p.z() != 0.)
+    {
+      doubled[v] = p;
+      continue;
+    }
     // Latitudes alternately above and below the equator, so that the example is not special.
     const double longitude = 2 * std::atan2(p.y(), p.x()), z = (k++ % 2 == 0 ? 0.2 : -0.3), r = std::sqrt(1 - z * z);
     doubled[v] = Point(r * std::cos(longitude), r * std::sin(longitude), z);
@@ -1136,7 +1297,8 @@ TEST(Certificate, DetectsFlipsAndDoubleCovers)
   open.faces.pop_back();
   Mesh open_mesh = to_mesh(open);
   auto open_sphere = open_mesh.add_property_map<Mesh::Vertex_index, Point>("v:sphere").first;
-  for(auto v : open_mesh.vertices()) open_sphere[v] = open_mesh.point(v);
+  for(auto v : open_mesh.vertices())
+    open_sphere[v] = open_mesh.point(v);
   const SP::Sphere_map_certificate open_certificate = SP::certify_sphere_map(open_mesh, open_sphere);
   EXPECT_EQ(open_certificate.flipped_faces, 0u);
   EXPECT_FALSE(open_certificate.valid_mesh);
@@ -1144,7 +1306,8 @@ TEST(Certificate, DetectsFlipsAndDoubleCovers)
   EXPECT_FALSE(exact_certificate(open_mesh, open_sphere).bijective());
 
   // All vertices on a great circle: degenerate, not positive.
-  for(auto v : m.vertices()) sphere[v] = Point(sphere[v].x(), sphere[v].y(), 0.);
+  for(auto v : m.vertices())
+    sphere[v] = Point(sphere[v].x(), sphere[v].y(), 0.);
   EXPECT_FALSE(SP::is_bijective_on_sphere(m, sphere));
   EXPECT_FALSE(exact_certificate(m, sphere).bijective());
 
@@ -1160,15 +1323,19 @@ TEST(Certificate, DetectsFlipsAndDoubleCovers)
 
 // Kernels whose coordinate functors change what the points say, to see that the functions read the points
 // through `geom_traits` (as spherical_parameterize() does), not through Point_3::x().
-struct Stretched_x_kernel : Kernel {
-  struct Compute_x_3 {
+struct Stretched_x_kernel : Kernel
+{
+  struct Compute_x_3
+  {
     double operator()(const Point& p) const { return 3. * p.x(); }
   };
   Compute_x_3 compute_x_3_object() const { return Compute_x_3(); }
 };
 
-struct Nan_x_kernel : Kernel {
-  struct Compute_x_3 {
+struct Nan_x_kernel : Kernel
+{
+  struct Compute_x_3
+  {
     double operator()(const Point&) const { return std::numeric_limits<double>::quiet_NaN(); }
   };
   Compute_x_3 compute_x_3_object() const { return Compute_x_3(); }
@@ -1182,17 +1349,20 @@ TEST(Certificate, ChecksAndDistortionReadThePointsAsTheMainFunction)
   auto sphere = m.add_property_map<Mesh::Vertex_index, Point>("v:sphere").first;
   auto broken = m.add_property_map<Mesh::Vertex_index, Point>("v:broken").first;
   auto stretched = m.add_property_map<Mesh::Vertex_index, Point>("v:stretched").first;
-  for(auto v : m.vertices()) {
+  for(auto v : m.vertices())
+  {
     const Point& p = m.point(v);
-    sphere[v] = p;  // the icosahedron of make_icosahedron() is inscribed in the unit sphere
+    sphere[v] = p; // the icosahedron of make_icosahedron() is inscribed in the unit sphere
     broken[v] = p;
     stretched[v] = Point(3. * p.x(), p.y(), p.z());
   }
   broken[*m.vertices().begin()] = Point(std::numeric_limits<double>::quiet_NaN(), 0, 0);
 
   EXPECT_TRUE(SP::check_input(m));
-  EXPECT_EQ(SP::check_input(m, CGAL::parameters::vertex_point_map(broken)).status, SP::Error_code::NON_FINITE_COORDINATES);
-  EXPECT_EQ(SP::check_input(m, CGAL::parameters::geom_traits(Nan_x_kernel())).status, SP::Error_code::NON_FINITE_COORDINATES);
+  EXPECT_EQ(SP::check_input(m, CGAL::parameters::vertex_point_map(broken)).status,
+            SP::Error_code::NON_FINITE_COORDINATES);
+  EXPECT_EQ(SP::check_input(m, CGAL::parameters::geom_traits(Nan_x_kernel())).status,
+            SP::Error_code::NON_FINITE_COORDINATES);
 
   EXPECT_TRUE(SP::certify_sphere_map(m, sphere).bijective);
   EXPECT_FALSE(SP::certify_sphere_map(m, sphere, CGAL::parameters::vertex_point_map(broken)).valid_mesh);
@@ -1200,8 +1370,10 @@ TEST(Certificate, ChecksAndDistortionReadThePointsAsTheMainFunction)
 
   // The identity has no distortion; against the mesh stretched along x, given either way, it has the same.
   EXPECT_LT(SP::measure_spherical_distortion(m, sphere).max_angle_error_degrees, 1e-9);
-  const SP::Spherical_distortion by_map = SP::measure_spherical_distortion(m, sphere, CGAL::parameters::vertex_point_map(stretched));
-  const SP::Spherical_distortion by_traits = SP::measure_spherical_distortion(m, sphere, CGAL::parameters::geom_traits(Stretched_x_kernel()));
+  const SP::Spherical_distortion by_map =
+      SP::measure_spherical_distortion(m, sphere, CGAL::parameters::vertex_point_map(stretched));
+  const SP::Spherical_distortion by_traits =
+      SP::measure_spherical_distortion(m, sphere, CGAL::parameters::geom_traits(Stretched_x_kernel()));
   EXPECT_GT(by_map.mean_angle_error_degrees, 5.);
   EXPECT_EQ(by_map.mean_angle_error_degrees, by_traits.mean_angle_error_degrees);
   EXPECT_EQ(by_map.log_area_ratio_stddev, by_traits.log_area_ratio_stddev);
@@ -1212,7 +1384,8 @@ TEST(Certificate, ChecksAndDistortionReadThePointsAsTheMainFunction)
 
 TEST(SphericalParameterize, SurfaceMeshAndPolyhedronGiveTheSameSphere)
 {
-  for(const std::string file : {shared_meshes + "/trimesh_fuze.off", cgal_data + "/triceratops.off"}) {
+  for(const std::string file : {shared_meshes + "/trimesh_fuze.off", cgal_data + "/triceratops.off"})
+  {
     Mesh m = read_mesh(file);
     Polyhedron p;
     ASSERT_TRUE(CGAL::IO::read_polygon_mesh(file, p));
@@ -1230,7 +1403,8 @@ TEST(SphericalParameterize, SurfaceMeshAndPolyhedronGiveTheSameSphere)
     std::size_t i = 0;
     double largest = 0.;
     auto pv = p.vertices_begin();
-    for(auto v : m.vertices()) {
+    for(auto v : m.vertices())
+    {
       ASSERT_TRUE(pv->point() == m.point(v)) << "vertex order differs at " << i;
       largest = std::max(largest, std::sqrt(CGAL::squared_distance(sm_sphere[v], poly_sphere_storage[pv])));
       ++pv;
@@ -1250,8 +1424,9 @@ TEST(SphericalParameterize, DeterministicAndInputUntouched)
   const SP::Result r2 = SP::spherical_parameterize(m, second, SP::parameters::metis_seed(3));
   ASSERT_TRUE(r1) << r1.message;
   ASSERT_TRUE(r2) << r2.message;
-  for(auto v : m.vertices()) {
-    EXPECT_TRUE(first[v] == second[v]);  // bitwise
+  for(auto v : m.vertices())
+  {
+    EXPECT_TRUE(first[v] == second[v]); // bitwise
     EXPECT_TRUE(m.point(v) == copy.point(v));
   }
   EXPECT_EQ(m.number_of_faces(), copy.number_of_faces());
@@ -1264,16 +1439,21 @@ TEST(SphericalParameterize, ParallelTagGivesTheSameMap)
 #ifdef CGAL_LINKED_WITH_TBB
   // Meshes and weights that converge: a time budget would make the comparison depend on the machine's load.
   for(const std::string file : {cgal_data + "/triceratops.off", shared_meshes + "/trimesh_busted.off"})
-    for(SP::Weighting weighting : {SP::Weighting::UNIFORM, SP::Weighting::MEAN_VALUE}) {
-      if(file == cgal_data + "/triceratops.off" && weighting == SP::Weighting::MEAN_VALUE) continue;
+    for(SP::Weighting weighting : {SP::Weighting::UNIFORM, SP::Weighting::MEAN_VALUE})
+    {
+      if(file == cgal_data + "/triceratops.off" && weighting == SP::Weighting::MEAN_VALUE)
+        continue;
       Mesh m = read_mesh(file);
       auto sequential = m.add_property_map<Mesh::Vertex_index, Point>("v:sequential").first;
       auto parallel = m.add_property_map<Mesh::Vertex_index, Point>("v:parallel").first;
-      const SP::Result r1 = SP::spherical_parameterize<CGAL::Sequential_tag>(m, sequential, SP::parameters::weighting(weighting));
-      const SP::Result r2 = SP::spherical_parameterize<CGAL::Parallel_tag>(m, parallel, SP::parameters::weighting(weighting));
+      const SP::Result r1 =
+          SP::spherical_parameterize<CGAL::Sequential_tag>(m, sequential, SP::parameters::weighting(weighting));
+      const SP::Result r2 =
+          SP::spherical_parameterize<CGAL::Parallel_tag>(m, parallel, SP::parameters::weighting(weighting));
       EXPECT_EQ(r1.status, r2.status) << file;
       EXPECT_EQ(r1.residual, r2.residual) << file;
-      for(auto v : m.vertices()) ASSERT_TRUE(sequential[v] == parallel[v]) << file;
+      for(auto v : m.vertices())
+        ASSERT_TRUE(sequential[v] == parallel[v]) << file;
     }
 #else
   GTEST_SKIP() << "built without TBB: CGAL::Parallel_tag is not available";
@@ -1286,7 +1466,8 @@ namespace {
 // so that its copies share nothing.
 std::atomic<int> solves_with_the_users_setting{0}, solves_without_it{0};
 
-struct Disk_solver_with_a_setting {
+struct Disk_solver_with_a_setting
+{
   using NT = double;
   using Matrix = CGAL::Eigen_sparse_matrix<double>;
   using Vector = CGAL::Eigen_vector<double>;
@@ -1297,7 +1478,8 @@ struct Disk_solver_with_a_setting {
   {
     ++(users_setting ? solves_with_the_users_setting : solves_without_it);
     Eigen::SparseLU<Matrix::EigenType> lu(A.eigen_object());
-    if(lu.info() != Eigen::Success) return false;
+    if(lu.info() != Eigen::Success)
+      return false;
     X = Vector::EigenType(lu.solve(B.eigen_object()));
     D = 1;
     return lu.info() == Eigen::Success;
@@ -1321,7 +1503,7 @@ TEST(SphericalParameterize, ParallelTagKeepsTheDiskSolversSettings)
   solves_with_the_users_setting = solves_without_it = 0;
   const SP::Result r1 = SP::spherical_parameterize<CGAL::Sequential_tag>(m, sequential, np);
   const int sequential_solves = solves_with_the_users_setting;
-  EXPECT_GE(sequential_solves, 4);  // u and v on each disk
+  EXPECT_GE(sequential_solves, 4); // u and v on each disk
   EXPECT_EQ(solves_without_it, 0);
 
   solves_with_the_users_setting = solves_without_it = 0;
@@ -1329,7 +1511,8 @@ TEST(SphericalParameterize, ParallelTagKeepsTheDiskSolversSettings)
   EXPECT_EQ(solves_with_the_users_setting, sequential_solves);
   EXPECT_EQ(solves_without_it, 0);
   EXPECT_EQ(r1.status, r2.status);
-  for(auto v : m.vertices()) ASSERT_TRUE(sequential[v] == parallel[v]);
+  for(auto v : m.vertices())
+    ASSERT_TRUE(sequential[v] == parallel[v]);
 #else
   GTEST_SKIP() << "built without TBB: CGAL::Parallel_tag is not available";
 #endif
@@ -1337,7 +1520,8 @@ TEST(SphericalParameterize, ParallelTagKeepsTheDiskSolversSettings)
 
 TEST(SphericalParameterize, TinyMeshes)
 {
-  for(const Arrays& a : {octahedron(), cube(), icosahedron()}) {
+  for(const Arrays& a : {octahedron(), cube(), icosahedron()})
+  {
     Mesh m = to_mesh(a);
     auto sphere = m.add_property_map<Mesh::Vertex_index, Point>("v:sphere").first;
     const SP::Result r = SP::spherical_parameterize(m, sphere);
@@ -1352,11 +1536,15 @@ Arrays split_faces_at_centres(const Arrays& a, double lift)
 {
   Arrays split;
   split.points = a.points;
-  for(const auto& f : a.faces) {
-    const Point& p = a.points[f[0]]; const Point& q = a.points[f[1]]; const Point& r = a.points[f[2]];
+  for(const auto& f : a.faces)
+  {
+    const Point& p = a.points[f[0]];
+    const Point& q = a.points[f[1]];
+    const Point& r = a.points[f[2]];
     const Kernel::Vector_3 normal = CGAL::cross_product(q - p, r - p);
-    const Point centre = CGAL::centroid(p, q, r) + lift * normal / std::sqrt(normal.squared_length()) *
-                                                        std::sqrt(std::sqrt(normal.squared_length()));
+    const Point centre =
+        CGAL::centroid(p, q, r)
+        + lift * normal / std::sqrt(normal.squared_length()) * std::sqrt(std::sqrt(normal.squared_length()));
     const std::size_t c = split.points.size();
     split.points.push_back(centre);
     split.faces.push_back({f[0], f[1], c});
@@ -1375,15 +1563,19 @@ Arrays arrays_from_file(const std::string& path)
 
 TEST(Inscribability, ProofOnlyWhereItHolds)
 {
-  for(const Arrays& a : {tetrahedron(), octahedron(), cube(), icosahedron()}) {
+  for(const Arrays& a : {tetrahedron(), octahedron(), cube(), icosahedron()})
+  {
     const SPI::Mesh_arrays arrays = arrays_of(to_mesh(a));
     EXPECT_FALSE(SPI::check_inscribability(system_of(arrays)).proven_not_inscribable) << a.points.size() << " vertices";
   }
-  for(const std::string file : {cgal_data + "/triceratops.off", shared_meshes + "/oscad_pcbvicebar.off", shared_meshes + "/npm_bunny.off"}) {
+  for(const std::string file :
+      {cgal_data + "/triceratops.off", shared_meshes + "/oscad_pcbvicebar.off", shared_meshes + "/npm_bunny.off"})
+  {
     const SPI::Mesh_arrays arrays = arrays_of(read_mesh(file));
     EXPECT_FALSE(SPI::check_inscribability(system_of(arrays)).proven_not_inscribable) << file;
   }
-  const SPI::Inscribability_check triakis = SPI::check_inscribability(system_of(arrays_of(to_mesh(split_faces_at_centres(tetrahedron(), 0.3)))));
+  const SPI::Inscribability_check triakis =
+      SPI::check_inscribability(system_of(arrays_of(to_mesh(split_faces_at_centres(tetrahedron(), 0.3)))));
   EXPECT_TRUE(triakis.proven_not_inscribable);
   EXPECT_EQ(triakis.independent_set_size, 4u);
   EXPECT_TRUE(triakis.edge_outside_set);
@@ -1394,34 +1586,41 @@ TEST(SphericalParameterize, NoBalancedSolutionClearStatusAndCertifiedFallbackMap
   const Arrays triakis = split_faces_at_centres(tetrahedron(), 0.3);
   const Arrays split_bunny = split_faces_at_centres(arrays_from_file(shared_meshes + "/npm_bunny.off"), 0.);
   const Arrays split_triceratops = split_faces_at_centres(arrays_from_file(cgal_data + "/triceratops.off"), 0.1);
-  for(const Arrays* a : {&triakis, &split_bunny, &split_triceratops}) {
+  for(const Arrays* a : {&triakis, &split_bunny, &split_triceratops})
+  {
     const Mesh mesh = to_mesh(*a);
     ASSERT_TRUE(SP::check_input(mesh)) << SP::check_input(mesh).message;
-    for(SP::Weighting weighting : {SP::Weighting::UNIFORM, SP::Weighting::MEAN_VALUE}) {
+    for(SP::Weighting weighting : {SP::Weighting::UNIFORM, SP::Weighting::MEAN_VALUE})
+    {
       std::map<Mesh::Vertex_index, Point> positions;
       auto sphere = boost::make_assoc_property_map(positions);
       const SP::Result result = SP::spherical_parameterize(mesh, sphere, SP::parameters::weighting(weighting));
-      EXPECT_EQ(result.status, SP::Error_code::NO_BALANCED_SOLUTION) << a->points.size() << " vertices: " << result.message;
+      EXPECT_EQ(result.status, SP::Error_code::NO_BALANCED_SOLUTION)
+          << a->points.size() << " vertices: " << result.message;
       EXPECT_NE(result.message.find("not inscribable"), std::string::npos) << result.message;
       // Bounded: no iteration is spent on equations without a bijective solution when the initial guess is
       // bijective; otherwise a capped number of bijectivity-preserving sweeps repairs it.
-      std::cout << a->points.size() << " vertices: initial non-positive faces " << result.initial_flipped_faces << ", sweeps "
-                << result.gauss_seidel.iterations << " + " << result.newton.iterations << ", " << result.total_seconds << " s\n";
-      if(result.initial_flipped_faces == 0) EXPECT_EQ(result.gauss_seidel.iterations + result.newton.iterations, 0u);
+      std::cout << a->points.size() << " vertices: initial non-positive faces " << result.initial_flipped_faces
+                << ", sweeps " << result.gauss_seidel.iterations << " + " << result.newton.iterations << ", "
+                << result.total_seconds << " s\n";
+      if(result.initial_flipped_faces == 0)
+        EXPECT_EQ(result.gauss_seidel.iterations + result.newton.iterations, 0u);
       EXPECT_LE(result.gauss_seidel.iterations + result.newton.iterations, 200u);
       EXPECT_LT(result.total_seconds, 30.);
       ASSERT_EQ(positions.size(), mesh.number_of_vertices());
       const Exact_certificate certificate = exact_certificate(mesh, sphere);
-      EXPECT_TRUE(certificate.bijective()) << a->points.size() << " vertices, " << certificate.non_positive_faces << " flips";
+      EXPECT_TRUE(certificate.bijective())
+          << a->points.size() << " vertices, " << certificate.non_positive_faces << " flips";
       EXPECT_EQ(result.bijective, certificate.bijective());
     }
     // Cotangent weights can be negative, where the proof does not apply: a status that says what happened, in
     // bounded time (the stagnation rule), and figures that the certificate confirms.
     std::map<Mesh::Vertex_index, Point> positions;
     auto sphere = boost::make_assoc_property_map(positions);
-    const SP::Result result = SP::spherical_parameterize(mesh, sphere, SP::parameters::weighting(SP::Weighting::COTANGENT));
-    std::cout << a->points.size() << " vertices, cotangent: " << SP::get_error_name(result.status) << ", " << result.total_seconds
-              << " s: " << result.message << "\n";
+    const SP::Result result =
+        SP::spherical_parameterize(mesh, sphere, SP::parameters::weighting(SP::Weighting::COTANGENT));
+    std::cout << a->points.size() << " vertices, cotangent: " << SP::get_error_name(result.status) << ", "
+              << result.total_seconds << " s: " << result.message << "\n";
     // A guard against a run without end, not a speed test (speed is measured in benchmark/): 35 to 62 s were
     // measured here for the 8,492-vertex case on a loaded 2-core machine.
     EXPECT_LT(result.total_seconds, 300.);
@@ -1432,7 +1631,8 @@ TEST(SphericalParameterize, NoBalancedSolutionClearStatusAndCertifiedFallbackMap
     if(result.status == SP::Error_code::OK || result.status == SP::Error_code::NO_BALANCED_SOLUTION)
       EXPECT_TRUE(certificate.bijective()) << result.message;
     else
-      EXPECT_TRUE(result.status == SP::Error_code::NOT_CONVERGED || result.status == SP::Error_code::NOT_BIJECTIVE) << result.message;
+      EXPECT_TRUE(result.status == SP::Error_code::NOT_CONVERGED || result.status == SP::Error_code::NOT_BIJECTIVE)
+          << result.message;
   }
 }
 
@@ -1459,19 +1659,23 @@ TEST(ProgressCallback, FollowsTheStagesAndCancels)
 
   // Cancel after three iterations (Newton's full steps, which come first with symmetric weights), and right after
   // stage 1.
-  for(std::size_t allowed : {3u, 0u}) {
+  for(std::size_t allowed : {3u, 0u})
+  {
     std::size_t calls = 0;
     auto cancel = [&](const SP::Progress& progress) { return progress.iteration == 0 || ++calls < allowed; };
     auto cancel_at_once = [](const SP::Progress&) { return false; };
     positions.clear();
-    const SP::Result cancelled =
-        allowed > 0 ? SP::spherical_parameterize(mesh, boost::make_assoc_property_map(positions), SP::parameters::progress_callback(cancel))
-                    : SP::spherical_parameterize(mesh, boost::make_assoc_property_map(positions), SP::parameters::progress_callback(cancel_at_once));
+    const SP::Result cancelled = allowed > 0
+                                     ? SP::spherical_parameterize(mesh, boost::make_assoc_property_map(positions),
+                                                                  SP::parameters::progress_callback(cancel))
+                                     : SP::spherical_parameterize(mesh, boost::make_assoc_property_map(positions),
+                                                                  SP::parameters::progress_callback(cancel_at_once));
     EXPECT_EQ(cancelled.status, SP::Error_code::CANCELLED);
     EXPECT_EQ(cancelled.gauss_seidel.iterations, 0u);
     EXPECT_EQ(cancelled.newton.iterations, allowed);
     ASSERT_EQ(positions.size(), mesh.number_of_vertices());
-    for(const auto& entry : positions) EXPECT_NEAR(std::sqrt(CGAL::to_double((entry.second - CGAL::ORIGIN).squared_length())), 1., 1e-12);
+    for(const auto& entry : positions)
+      EXPECT_NEAR(std::sqrt(CGAL::to_double((entry.second - CGAL::ORIGIN).squared_length())), 1., 1e-12);
   }
 }
 
@@ -1486,8 +1690,10 @@ TEST(ProgressCallback, CancelsTheLeastSquaresIterationsOfMeanValueWeights)
   double asked_to_stop = -1.;
   auto cancel_after_stage_1 = [&](const SP::Progress& progress) {
     seconds.push_back(progress.seconds);
-    if(seconds.size() == 1) return true;  // the end of stage 1
-    if(asked_to_stop < 0.) asked_to_stop = progress.seconds;
+    if(seconds.size() == 1)
+      return true; // the end of stage 1
+    if(asked_to_stop < 0.)
+      asked_to_stop = progress.seconds;
     return false;
   };
   std::map<Mesh::Vertex_index, Point> positions;
@@ -1497,9 +1703,10 @@ TEST(ProgressCallback, CancelsTheLeastSquaresIterationsOfMeanValueWeights)
       SP::parameters::combine(SP::parameters::weighting(SP::Weighting::MEAN_VALUE), SP::parameters::max_seconds(20.),
                               SP::parameters::progress_callback(cancel_after_stage_1)));
   const double elapsed = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-  ASSERT_GE(seconds.size(), 2u) << "the callback was not asked after stage 1; status " << SP::get_error_name(result.status);
+  ASSERT_GE(seconds.size(), 2u) << "the callback was not asked after stage 1; status "
+                                << SP::get_error_name(result.status);
   EXPECT_EQ(result.status, SP::Error_code::CANCELLED) << result.message;
-  EXPECT_LT(asked_to_stop - seconds.front(), 1.5);  // polled at most every half second, plus one step
+  EXPECT_LT(asked_to_stop - seconds.front(), 1.5); // polled at most every half second, plus one step
   EXPECT_LT(elapsed - asked_to_stop, 2.);
   ASSERT_EQ(positions.size(), mesh.number_of_vertices());
   EXPECT_EQ(result.flipped_faces, 0u);
@@ -1511,10 +1718,13 @@ TEST(SphericalParameterize, ExactKernelPoints)
   using Exact_mesh = CGAL::Surface_mesh<CGAL::Epeck::Point_3>;
   const Mesh mesh = read_mesh(shared_meshes + "/trimesh_fuze.off");
   Exact_mesh exact;
-  for(auto v : mesh.vertices()) exact.add_vertex(CGAL::Epeck::Point_3(mesh.point(v).x(), mesh.point(v).y(), mesh.point(v).z()));
-  for(auto f : mesh.faces()) {
+  for(auto v : mesh.vertices())
+    exact.add_vertex(CGAL::Epeck::Point_3(mesh.point(v).x(), mesh.point(v).y(), mesh.point(v).z()));
+  for(auto f : mesh.faces())
+  {
     std::vector<Exact_mesh::Vertex_index> vs;
-    for(auto v : vertices_around_face(mesh.halfedge(f), mesh)) vs.push_back(Exact_mesh::Vertex_index(std::size_t(v)));
+    for(auto v : vertices_around_face(mesh.halfedge(f), mesh))
+      vs.push_back(Exact_mesh::Vertex_index(std::size_t(v)));
     exact.add_face(vs);
   }
   std::map<Mesh::Vertex_index, Point> expected;
@@ -1523,7 +1733,8 @@ TEST(SphericalParameterize, ExactKernelPoints)
   const SP::Result result = SP::spherical_parameterize(exact, boost::make_assoc_property_map(obtained),
                                                        CGAL::parameters::geom_traits(CGAL::Epeck()));
   ASSERT_EQ(result.status, SP::Error_code::OK) << result.message;
-  for(auto v : mesh.vertices()) EXPECT_EQ(expected[v], obtained[Exact_mesh::Vertex_index(std::size_t(v))]);
+  for(auto v : mesh.vertices())
+    EXPECT_EQ(expected[v], obtained[Exact_mesh::Vertex_index(std::size_t(v))]);
 }
 
 TEST(SphericalParameterize, ReportsInputErrorsAndWritesNothing)
@@ -1533,7 +1744,8 @@ TEST(SphericalParameterize, ReportsInputErrorsAndWritesNothing)
   const SP::Result r = SP::spherical_parameterize(m, sphere);
   EXPECT_EQ(r.status, SP::Error_code::GENUS_NOT_ZERO);
   EXPECT_FALSE(r);
-  for(auto v : m.vertices()) EXPECT_TRUE(sphere[v] == Point(7, 7, 7));
+  for(auto v : m.vertices())
+    EXPECT_TRUE(sphere[v] == Point(7, 7, 7));
 
   Mesh cow = read_mesh(cgal_data + "/cow.off");
   auto cow_sphere = cow.add_property_map<Mesh::Vertex_index, Point>("v:sphere").first;
@@ -1549,10 +1761,12 @@ TEST(SphericalParameterize, NamedParametersAndUserWeights)
   auto ones = m.add_property_map<Mesh::Halfedge_index, double>("h:w", 1.).first;
   // Ours first and CGAL's chained after, or combined in any order.
   const SP::Result r1 = SP::spherical_parameterize(
-      m, a, SP::parameters::tolerance(5e-7, CGAL::parameters::vertex_point_map(get(CGAL::vertex_point, m)).verbose(false)));
-  const SP::Result r2 = SP::spherical_parameterize(
-      m, b, SP::parameters::combine(CGAL::parameters::verbose(false), SP::parameters::halfedge_weight_map(ones),
-                                    SP::parameters::tolerance(5e-7)));
+      m, a,
+      SP::parameters::tolerance(5e-7, CGAL::parameters::vertex_point_map(get(CGAL::vertex_point, m)).verbose(false)));
+  const SP::Result r2 = SP::spherical_parameterize(m, b,
+                                                   SP::parameters::combine(CGAL::parameters::verbose(false),
+                                                                           SP::parameters::halfedge_weight_map(ones),
+                                                                           SP::parameters::tolerance(5e-7)));
   ASSERT_TRUE(r1) << r1.message;
   ASSERT_TRUE(r2) << r2.message;
   EXPECT_LT(r1.residual, 5e-7);
@@ -1570,12 +1784,14 @@ TEST(SphericalParameterize, NamedParametersAndUserWeights)
   EXPECT_GT(r3.separator_size, 0u);
   const SP::Result r4 = SP::spherical_parameterize(m, b, CGAL::parameters::METIS_options(&metis_options));
   EXPECT_TRUE(r4) << r4.message;
-  for(auto v : m.vertices()) EXPECT_TRUE(a[v] == b[v]);  // the same options give the same sphere
+  for(auto v : m.vertices())
+    EXPECT_TRUE(a[v] == b[v]); // the same options give the same sphere
 
   // A user weight of -infinity is an invalid weight, not a missing one.
   auto bad = m.add_property_map<Mesh::Halfedge_index, double>("h:bad", 1.).first;
   bad[*m.halfedges().begin()] = -std::numeric_limits<double>::infinity();
-  EXPECT_EQ(SP::spherical_parameterize(m, a, SP::parameters::halfedge_weight_map(bad)).status, SP::Error_code::INVALID_WEIGHTS);
+  EXPECT_EQ(SP::spherical_parameterize(m, a, SP::parameters::halfedge_weight_map(bad)).status,
+            SP::Error_code::INVALID_WEIGHTS);
 }
 
 // The package renumbers the vertices of large meshes internally (renumber_for_locality): the output, the user's
@@ -1587,18 +1803,22 @@ TEST(SphericalParameterize, InternalRenumberingIsInvisible)
   ASSERT_GE(m.number_of_vertices(), SPI::renumbering_minimum_vertices);
   const std::vector<Mesh::Vertex_index> vertices(m.vertices().begin(), m.vertices().end());
   std::vector<std::size_t> order(vertices.size());
-  for(std::size_t i = 0; i < order.size(); ++i) order[i] = i;
+  for(std::size_t i = 0; i < order.size(); ++i)
+    order[i] = i;
   std::mt19937 random(7);
   std::shuffle(order.begin(), order.end(), random);
   // The same surface, its vertices and faces in a shuffled order.
   Mesh shuffled;
   std::vector<Mesh::Vertex_index> copy_of(vertices.size());
-  for(std::size_t k : order) copy_of[k] = shuffled.add_vertex(m.point(vertices[k]));
+  for(std::size_t k : order)
+    copy_of[k] = shuffled.add_vertex(m.point(vertices[k]));
   std::vector<Mesh::Face_index> faces(m.faces().begin(), m.faces().end());
   std::shuffle(faces.begin(), faces.end(), random);
-  for(Mesh::Face_index f : faces) {
+  for(Mesh::Face_index f : faces)
+  {
     std::vector<Mesh::Vertex_index> corners;
-    for(Mesh::Vertex_index v : vertices_around_face(m.halfedge(f), m)) corners.push_back(copy_of[std::size_t(v)]);
+    for(Mesh::Vertex_index v : vertices_around_face(m.halfedge(f), m))
+      corners.push_back(copy_of[std::size_t(v)]);
     ASSERT_NE(shuffled.add_face(corners), Mesh::null_face());
   }
   auto sphere = shuffled.add_property_map<Mesh::Vertex_index, Point>("v:sphere").first;
@@ -1606,7 +1826,8 @@ TEST(SphericalParameterize, InternalRenumberingIsInvisible)
   ASSERT_TRUE(shuffled_result) << shuffled_result.message;
   // Carried back vertex by vertex, the map is a certified bijective map of the original mesh.
   auto back = m.add_property_map<Mesh::Vertex_index, Point>("v:back").first;
-  for(std::size_t i = 0; i < vertices.size(); ++i) back[vertices[i]] = sphere[copy_of[i]];
+  for(std::size_t i = 0; i < vertices.size(); ++i)
+    back[vertices[i]] = sphere[copy_of[i]];
   EXPECT_TRUE(exact_certificate(m, back).bijective());
 
   // Symmetric weights that change from vertex to vertex reach the right edges: the output balances exactly them.
@@ -1617,11 +1838,13 @@ TEST(SphericalParameterize, InternalRenumberingIsInvisible)
   const SP::Result weighted = SP::spherical_parameterize(m, balanced, SP::parameters::halfedge_weight_map(weight));
   ASSERT_TRUE(weighted) << weighted.message;
   double sum_of_squares = 0.;
-  for(Mesh::Vertex_index v : m.vertices()) {
+  for(Mesh::Vertex_index v : m.vertices())
+  {
     const Kernel::Vector_3 xi = balanced[v] - CGAL::ORIGIN;
     Kernel::Vector_3 pull(0, 0, 0);
     double total = 0.;
-    for(Mesh::Halfedge_index h : halfedges_around_target(m.halfedge(v), m)) {
+    for(Mesh::Halfedge_index h : halfedges_around_target(m.halfedge(v), m))
+    {
       pull = pull + weight[h] * (balanced[m.source(h)] - balanced[v]);
       total += weight[h];
     }
@@ -1638,7 +1861,8 @@ TEST(SphericalParameterize, InternalRenumberingIsInvisible)
 
 namespace {
 
-SP::IO::File_read parse(const std::string& text, std::vector<Point>& points, std::vector<std::vector<std::size_t>>& faces)
+SP::IO::File_read parse(const std::string& text, std::vector<Point>& points,
+                        std::vector<std::vector<std::size_t>>& faces)
 {
   return SP::IO::parse_OFF(text.data(), text.data() + text.size(), points, faces);
 }
@@ -1690,13 +1914,16 @@ TEST(ReadPolygonSoup, EachDefectHasItsStatus)
       // A header that announces more than the bytes can hold is refused without allocating for it.
       {"OFF\n999999999999 999999999999 0\n0 0 0\n", S::TRUNCATED},
       {"OFF\n99999999999999999999999 1 0\n", S::INVALID_DATA}};
-  for(const auto& [text, status] : cases) {
+  for(const auto& [text, status] : cases)
+  {
     const SP::IO::File_read read = parse(text, points, faces);
-    EXPECT_EQ(read.status, status) << "'" << text << "': " << SP::IO::get_file_status_name(read.status) << ": " << read.message;
+    EXPECT_EQ(read.status, status) << "'" << text << "': " << SP::IO::get_file_status_name(read.status) << ": "
+                                   << read.message;
     EXPECT_FALSE(read.message.empty());
   }
   // Non-finite or out-of-range numbers are read, and the input check names them.
-  ASSERT_TRUE(parse("OFF\n4 4 0\n1 1 1\n1 -1 -1\n-1 1 nan\n-1 -1 1e999\n3 0 1 2\n3 0 2 3\n3 0 3 1\n3 1 3 2\n", points, faces));
+  ASSERT_TRUE(
+      parse("OFF\n4 4 0\n1 1 1\n1 -1 -1\n-1 1 nan\n-1 -1 1e999\n3 0 1 2\n3 0 2 3\n3 0 3 1\n3 1 3 2\n", points, faces));
   EXPECT_EQ(SP::check_polygon_soup(points, faces).status, SP::Error_code::NON_FINITE_COORDINATES);
   // The message says where the file went wrong.
   EXPECT_NE(parse("OFF\n3 1 0\n0 0 0\n1 0 0\n", points, faces).message.find("2 of the 3 vertices"), std::string::npos);
@@ -1707,8 +1934,10 @@ TEST(ReadPolygonSoup, FilesAndGzip)
 {
   std::vector<Point> points;
   std::vector<std::vector<std::size_t>> faces;
-  EXPECT_EQ(SP::IO::read_polygon_soup(shared_meshes + "/no_such_file.off", points, faces).status, SP::IO::File_status::CANNOT_OPEN);
-  EXPECT_EQ(SP::IO::read_polygon_soup(shared_meshes, points, faces).status, SP::IO::File_status::CANNOT_OPEN) << "a folder";
+  EXPECT_EQ(SP::IO::read_polygon_soup(shared_meshes + "/no_such_file.off", points, faces).status,
+            SP::IO::File_status::CANNOT_OPEN);
+  EXPECT_EQ(SP::IO::read_polygon_soup(shared_meshes, points, faces).status, SP::IO::File_status::CANNOT_OPEN)
+      << "a folder";
   const SP::IO::File_read plain = SP::IO::read_polygon_soup(shared_meshes + "/trimesh_fuze.off", points, faces);
   ASSERT_TRUE(plain) << plain.message;
   EXPECT_EQ(points.size(), 502u);
@@ -1720,7 +1949,8 @@ TEST(ReadPolygonSoup, FilesAndGzip)
   EXPECT_EQ(points, cgal_points);
   EXPECT_EQ(faces, cgal_faces);
 #ifdef CGAL_SPHERICAL_PARAMETERIZATION_USE_ZLIB
-  const SP::IO::File_read gz = SP::IO::read_polygon_soup(shared_meshes + "/bad_input/large_holes_handles_dragon_vrip.off.gz", points, faces);
+  const SP::IO::File_read gz =
+      SP::IO::read_polygon_soup(shared_meshes + "/bad_input/large_holes_handles_dragon_vrip.off.gz", points, faces);
   ASSERT_TRUE(gz) << gz.message;
   EXPECT_EQ(points.size(), 437645u);
   EXPECT_EQ(faces.size(), 871414u);
@@ -1740,17 +1970,20 @@ Arrays uv_sphere(int longitudes, int rings)
   Arrays a;
   a.points.emplace_back(0, 0, 1);
   for(int i = 1; i <= rings; ++i)
-    for(int j = 0; j < longitudes; ++j) {
+    for(int j = 0; j < longitudes; ++j)
+    {
       const double theta = CGAL_PI * i / (rings + 1), phi = 2 * CGAL_PI * j / longitudes;
       a.points.emplace_back(std::sin(theta) * std::cos(phi), std::sin(theta) * std::sin(phi), std::cos(theta));
     }
   a.points.emplace_back(0, 0, -1);
   const std::size_t south = a.points.size() - 1;
   auto id = [&](int i, int j) { return std::size_t(1 + (i - 1) * longitudes + (j + longitudes) % longitudes); };
-  for(int j = 0; j < longitudes; ++j) {
+  for(int j = 0; j < longitudes; ++j)
+  {
     a.faces.push_back({0, id(1, j), id(1, j + 1)});
     a.faces.push_back({south, id(rings, j + 1), id(rings, j)});
-    for(int i = 1; i < rings; ++i) {
+    for(int i = 1; i < rings; ++i)
+    {
       a.faces.push_back({id(i, j), id(i + 1, j), id(i + 1, j + 1)});
       a.faces.push_back({id(i, j), id(i + 1, j + 1), id(i, j + 1)});
     }
@@ -1758,7 +1991,13 @@ Arrays uv_sphere(int longitudes, int rings)
   return a;
 }
 
-enum class Defect { ZERO_AREA, COINCIDENT, NEEDLE, ALL };
+enum class Defect
+{
+  ZERO_AREA,
+  COINCIDENT,
+  NEEDLE,
+  ALL
+};
 
 // Degenerates the sphere where its rings are: vertex (i, j + 1) of the face (i, j), (i + 1, j + 1), (i, j + 1)
 // moved onto the face's other edge (zero area), onto a neighbour (coincident), or 1e-7 away from that edge
@@ -1769,22 +2008,26 @@ Arrays degenerate_sphere(Defect defect)
   Arrays a = uv_sphere(longitudes, rings);
   auto id = [&](int i, int j) { return std::size_t(1 + (i - 1) * longitudes + (j + longitudes) % longitudes); };
   auto vector = [&](std::size_t i, std::size_t j) { return a.points[j] - a.points[i]; };
-  if(defect == Defect::ZERO_AREA || defect == Defect::ALL) {
+  if(defect == Defect::ZERO_AREA || defect == Defect::ALL)
+  {
     const std::size_t p = id(3, 1), q = id(4, 2), moved = id(3, 2);
     a.points[moved] = CGAL::midpoint(a.points[p], a.points[q]);
   }
-  if(defect == Defect::COINCIDENT || defect == Defect::ALL) a.points[id(2, 20)] = a.points[id(2, 21)];
-  if(defect == Defect::NEEDLE || defect == Defect::ALL) {
+  if(defect == Defect::COINCIDENT || defect == Defect::ALL)
+    a.points[id(2, 20)] = a.points[id(2, 21)];
+  if(defect == Defect::NEEDLE || defect == Defect::ALL)
+  {
     const std::size_t p = id(4, 35), q = id(5, 36), moved = id(4, 36);
     const Kernel::Vector_3 along = vector(p, q);
     const Kernel::Vector_3 normal = CGAL::cross_product(along, a.points[p] - CGAL::ORIGIN);
-    a.points[moved] = CGAL::midpoint(a.points[p], a.points[q]) +
-                      1e-7 * std::sqrt(along.squared_length() / normal.squared_length()) * normal;
+    a.points[moved] = CGAL::midpoint(a.points[p], a.points[q])
+                      + 1e-7 * std::sqrt(along.squared_length() / normal.squared_length()) * normal;
   }
   return a;
 }
 
-struct Degenerate_outcome {
+struct Degenerate_outcome
+{
   SP::Result result;
   Exact_certificate certificate;
   bool finite = true;
@@ -1798,37 +2041,50 @@ Degenerate_outcome map_degenerate(const Mesh& mesh, SP::Weighting weighting)
   outcome.result = SP::spherical_parameterize(
       mesh, sphere, SP::parameters::combine(SP::parameters::weighting(weighting), SP::parameters::max_seconds(2.)));
   for(const auto& entry : positions)
-    outcome.finite = outcome.finite && std::isfinite(entry.second.x()) && std::isfinite(entry.second.y()) && std::isfinite(entry.second.z());
-  if(positions.size() == mesh.number_of_vertices()) outcome.certificate = exact_certificate(mesh, sphere);
+    outcome.finite = outcome.finite && std::isfinite(entry.second.x()) && std::isfinite(entry.second.y())
+                     && std::isfinite(entry.second.z());
+  if(positions.size() == mesh.number_of_vertices())
+    outcome.certificate = exact_certificate(mesh, sphere);
   return outcome;
 }
 
 // Uniform weights: certified. Other weights: certified, or a status that says why, with finite figures and a
 // map that is finite and, when it is not bijective, said to be so; never a claimed success that is not one.
 // `uniform_must_succeed`: false for a mesh on known_failures.txt with uniform weights (the figures must be honest).
-void expect_honest(const Mesh& mesh, const std::string& name, std::size_t expected_clamped_at_least, bool uniform_must_succeed = true)
+void expect_honest(const Mesh& mesh, const std::string& name, std::size_t expected_clamped_at_least,
+                   bool uniform_must_succeed = true)
 {
-  for(SP::Weighting weighting : {SP::Weighting::UNIFORM, SP::Weighting::COTANGENT, SP::Weighting::MEAN_VALUE}) {
+  for(SP::Weighting weighting : {SP::Weighting::UNIFORM, SP::Weighting::COTANGENT, SP::Weighting::MEAN_VALUE})
+  {
     const Degenerate_outcome o = map_degenerate(mesh, weighting);
-    const std::string what = name + " weighting " + std::to_string(int(weighting)) + ": " + SP::get_error_name(o.result.status) +
-                             ": " + o.result.message;
+    const std::string what = name + " weighting " + std::to_string(int(weighting)) + ": "
+                             + SP::get_error_name(o.result.status) + ": " + o.result.message;
     std::cout << what << " (" << o.result.clamped_weights << " clamped, " << o.result.total_seconds << " s)\n";
     EXPECT_TRUE(o.finite) << what;
-    if(weighting == SP::Weighting::UNIFORM) {
-      if(uniform_must_succeed) EXPECT_EQ(o.result.status, SP::Error_code::OK) << what;
+    if(weighting == SP::Weighting::UNIFORM)
+    {
+      if(uniform_must_succeed)
+        EXPECT_EQ(o.result.status, SP::Error_code::OK) << what;
       EXPECT_EQ(o.result.clamped_weights, 0u) << what;
-    } else {
+    }
+    else
+    {
       EXPECT_GE(o.result.clamped_weights, expected_clamped_at_least) << what;
     }
-    if(o.result.status == SP::Error_code::INVALID_WEIGHTS) continue;
-    EXPECT_TRUE(o.result.status == SP::Error_code::OK || o.result.status == SP::Error_code::NOT_CONVERGED ||
-                o.result.status == SP::Error_code::NOT_BIJECTIVE) << what;
+    if(o.result.status == SP::Error_code::INVALID_WEIGHTS)
+      continue;
+    EXPECT_TRUE(o.result.status == SP::Error_code::OK || o.result.status == SP::Error_code::NOT_CONVERGED
+                || o.result.status == SP::Error_code::NOT_BIJECTIVE)
+        << what;
     EXPECT_TRUE(std::isfinite(o.result.residual) && o.result.residual >= 0.) << what;
-    EXPECT_EQ(o.result.bijective, o.certificate.bijective()) << what << " (exact certificate: degree " << o.certificate.degree
-                                                             << ", result's area " << o.result.total_signed_area << ")";
+    EXPECT_EQ(o.result.bijective, o.certificate.bijective())
+        << what << " (exact certificate: degree " << o.certificate.degree << ", result's area "
+        << o.result.total_signed_area << ")";
     EXPECT_EQ(o.result.flipped_faces, o.certificate.non_positive_faces) << what;
-    if(o.result.status == SP::Error_code::OK) EXPECT_TRUE(o.certificate.bijective()) << what;
-    else EXPECT_NE(o.result.message.find("flipped faces"), std::string::npos) << what;
+    if(o.result.status == SP::Error_code::OK)
+      EXPECT_TRUE(o.certificate.bijective()) << what;
+    else
+      EXPECT_NE(o.result.message.find("flipped faces"), std::string::npos) << what;
   }
 }
 
@@ -1836,10 +2092,12 @@ void expect_honest(const Mesh& mesh, const std::string& name, std::size_t expect
 
 TEST(SphericalParameterize, DegenerateGeometryZeroAreaCoincidentNeedleValence50)
 {
-  const std::vector<std::pair<Defect, std::string>> defects = {
-      {Defect::ZERO_AREA, "zero-area face"}, {Defect::COINCIDENT, "coincident vertices"},
-      {Defect::NEEDLE, "needle"}, {Defect::ALL, "all defects"}};
-  for(const auto& [defect, name] : defects) {
+  const std::vector<std::pair<Defect, std::string>> defects = {{Defect::ZERO_AREA, "zero-area face"},
+                                                               {Defect::COINCIDENT, "coincident vertices"},
+                                                               {Defect::NEEDLE, "needle"},
+                                                               {Defect::ALL, "all defects"}};
+  for(const auto& [defect, name] : defects)
+  {
     const Arrays a = degenerate_sphere(defect);
     const Mesh mesh = to_mesh(a);
     ASSERT_TRUE(SP::check_input(mesh)) << name;
@@ -1851,14 +2109,17 @@ TEST(SphericalParameterize, DegenerateGeometryZeroAreaCoincidentNeedleValence50)
 TEST(AssignWeights, ClampedWeightsAreFiniteAndCounted)
 {
   const SPI::Mesh_arrays arrays = arrays_of(to_mesh(degenerate_sphere(Defect::ALL)));
-  for(SP::Weighting weighting : {SP::Weighting::COTANGENT, SP::Weighting::MEAN_VALUE}) {
+  for(SP::Weighting weighting : {SP::Weighting::COTANGENT, SP::Weighting::MEAN_VALUE})
+  {
     SPI::Sphere_system system = SPI::make_connectivity(arrays);
     std::string message;
     const SP::Error_code status = SPI::assign_weights(system, arrays, weighting, {}, message);
     EXPECT_EQ(status, SP::Error_code::OK) << message;
     EXPECT_GT(system.clamped_weights, 0u);
-    for(double w : system.weights) EXPECT_TRUE(std::isfinite(w));
-    for(double r : system.row_sums) EXPECT_TRUE(std::isfinite(r) && r > 0.);
+    for(double w : system.weights)
+      EXPECT_TRUE(std::isfinite(w));
+    for(double r : system.row_sums)
+      EXPECT_TRUE(std::isfinite(r) && r > 0.);
   }
   // A regular mesh has nothing to clamp.
   const SPI::Mesh_arrays regular = arrays_of(to_mesh(uv_sphere(50, 6)));
@@ -1874,7 +2135,8 @@ TEST(SphericalParameterize, FuzzerFindings)
 {
   const std::string folder = SP_SOURCE_DIR "/fuzz_regressions";
   std::size_t files = 0;
-  for(const auto& entry : std::filesystem::directory_iterator(folder)) {
+  for(const auto& entry : std::filesystem::directory_iterator(folder))
+  {
     Arrays a;
     const SP::IO::File_read read = SP::IO::read_polygon_soup(entry.path().string(), a.points, a.faces);
     ASSERT_TRUE(read) << entry.path() << ": " << read.message;
@@ -1902,18 +2164,24 @@ TEST(SphericalParameterize, TinyCapsGiveTheBestIterateAndItsFigures)
   const Mesh mesh = read_mesh(shared_meshes + "/npm_bunny.off");
   const SPI::Mesh_arrays arrays = arrays_of(mesh);
   const SPI::Sphere_system system = system_of(arrays);
-  struct Cap { std::size_t gauss_seidel, newton; double seconds; };
-  for(const Cap cap : {Cap{2, 0, -1.}, Cap{3, 1, -1.}, Cap{1000, 200000, 0.}}) {
+  struct Cap
+  {
+    std::size_t gauss_seidel, newton;
+    double seconds;
+  };
+  for(const Cap cap : {Cap{2, 0, -1.}, Cap{3, 1, -1.}, Cap{1000, 200000, 0.}})
+  {
     std::map<Mesh::Vertex_index, Point> positions;
     auto sphere = boost::make_assoc_property_map(positions);
     const auto start = std::chrono::steady_clock::now();
     const SP::Result result = SP::spherical_parameterize(
-        mesh, sphere, SP::parameters::combine(SP::parameters::max_gauss_seidel_sweeps(cap.gauss_seidel),
-                                              SP::parameters::max_newton_sweeps(cap.newton), SP::parameters::max_seconds(cap.seconds),
-                                              SP::parameters::tolerance(1e-12)));
+        mesh, sphere,
+        SP::parameters::combine(SP::parameters::max_gauss_seidel_sweeps(cap.gauss_seidel),
+                                SP::parameters::max_newton_sweeps(cap.newton), SP::parameters::max_seconds(cap.seconds),
+                                SP::parameters::tolerance(1e-12)));
     const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-    const std::string what = std::to_string(cap.gauss_seidel) + "/" + std::to_string(cap.newton) + "/" + std::to_string(cap.seconds) +
-                             ": " + result.message;
+    const std::string what = std::to_string(cap.gauss_seidel) + "/" + std::to_string(cap.newton) + "/"
+                             + std::to_string(cap.seconds) + ": " + result.message;
     EXPECT_EQ(result.status, SP::Error_code::NOT_CONVERGED) << what;
     EXPECT_NE(result.message.find("Res"), std::string::npos) << what;
     EXPECT_LE(result.gauss_seidel.iterations, cap.gauss_seidel) << what;
@@ -1922,7 +2190,8 @@ TEST(SphericalParameterize, TinyCapsGiveTheBestIterateAndItsFigures)
     // The map holds the iterate the figures describe, and it is the best one: no worse than the initial guess.
     ASSERT_EQ(positions.size(), mesh.number_of_vertices());
     std::vector<SPI::Vector3> x(positions.size());
-    for(auto v : mesh.vertices()) x[std::size_t(v)] = SPI::Vector3(positions[v].x(), positions[v].y(), positions[v].z());
+    for(auto v : mesh.vertices())
+      x[std::size_t(v)] = SPI::Vector3(positions[v].x(), positions[v].y(), positions[v].z());
     EXPECT_NEAR(SPI::compute_residuals(system, x).paper, result.residual, 1e-15) << what;
     EXPECT_LE(result.residual, result.initial_guess.residual) << what;
     const Exact_certificate certificate = exact_certificate(mesh, sphere);
@@ -1945,16 +2214,37 @@ std::vector<unsigned char> snapshot(const Mesh& m)
     const unsigned char* p = reinterpret_cast<const unsigned char*>(&value);
     bytes.insert(bytes.end(), p, p + sizeof(value));
   };
-  add(m.number_of_vertices()); add(m.number_of_halfedges()); add(m.number_of_faces()); add(m.number_of_removed_vertices());
-  for(auto v : m.vertices()) { const Point& p = m.point(v); add(p.x()); add(p.y()); add(p.z()); add(m.halfedge(v)); }
-  for(auto h : m.halfedges()) { add(m.next(h)); add(m.prev(h)); add(m.target(h)); add(m.face(h)); }
-  for(auto f : m.faces()) add(m.halfedge(f));
-  for(const std::string& name : m.properties<Mesh::Vertex_index>()) bytes.insert(bytes.end(), name.begin(), name.end());
-  for(const std::string& name : m.properties<Mesh::Halfedge_index>()) bytes.insert(bytes.end(), name.begin(), name.end());
+  add(m.number_of_vertices());
+  add(m.number_of_halfedges());
+  add(m.number_of_faces());
+  add(m.number_of_removed_vertices());
+  for(auto v : m.vertices())
+  {
+    const Point& p = m.point(v);
+    add(p.x());
+    add(p.y());
+    add(p.z());
+    add(m.halfedge(v));
+  }
+  for(auto h : m.halfedges())
+  {
+    add(m.next(h));
+    add(m.prev(h));
+    add(m.target(h));
+    add(m.face(h));
+  }
+  for(auto f : m.faces())
+    add(m.halfedge(f));
+  for(const std::string& name : m.properties<Mesh::Vertex_index>())
+    bytes.insert(bytes.end(), name.begin(), name.end());
+  for(const std::string& name : m.properties<Mesh::Halfedge_index>())
+    bytes.insert(bytes.end(), name.begin(), name.end());
   const auto colour = m.property_map<Mesh::Vertex_index, int>("v:colour").first;
-  for(auto v : m.vertices()) add(colour[v]);
+  for(auto v : m.vertices())
+    add(colour[v]);
   const auto weight = m.property_map<Mesh::Halfedge_index, double>("h:weight").first;
-  for(auto h : m.halfedges()) add(weight[h]);
+  for(auto h : m.halfedges())
+    add(weight[h]);
   return bytes;
 }
 
@@ -1964,15 +2254,20 @@ TEST(SphericalParameterize, InputUntouchedAfterSuccessAndAfterEveryKindOfFailure
 {
   const Arrays triakis = split_faces_at_centres(tetrahedron(), 0.3);
   const std::vector<std::pair<std::string, Arrays>> meshes = {
-      {"bunny", arrays_from_file(shared_meshes + "/npm_bunny.off")}, {"torus", torus()},
-      {"triakis", triakis}, {"degenerate", degenerate_sphere(Defect::ALL)}};
-  for(const auto& [name, arrays] : meshes) {
+      {"bunny", arrays_from_file(shared_meshes + "/npm_bunny.off")},
+      {"torus", torus()},
+      {"triakis", triakis},
+      {"degenerate", degenerate_sphere(Defect::ALL)}};
+  for(const auto& [name, arrays] : meshes)
+  {
     Mesh mesh = to_mesh(arrays);
     auto colour = mesh.add_property_map<Mesh::Vertex_index, int>("v:colour", 0).first;
     int k = 0;
-    for(auto v : mesh.vertices()) colour[v] = k++ * 7919;
+    for(auto v : mesh.vertices())
+      colour[v] = k++ * 7919;
     auto weight = mesh.add_property_map<Mesh::Halfedge_index, double>("h:weight", 1.).first;
-    for(auto h : mesh.halfedges()) weight[h] = 1. + double(std::size_t(h) % 5);
+    for(auto h : mesh.halfedges())
+      weight[h] = 1. + double(std::size_t(h) % 5);
     const std::vector<unsigned char> before = snapshot(mesh);
     std::map<Mesh::Vertex_index, Point> positions;
     auto sphere = boost::make_assoc_property_map(positions);
@@ -1980,22 +2275,36 @@ TEST(SphericalParameterize, InputUntouchedAfterSuccessAndAfterEveryKindOfFailure
     // One second per call but the first: whether they converge does not matter here, only that nothing is touched.
     const auto budget = SP::parameters::max_seconds(1.);
     seen.push_back(SP::spherical_parameterize(mesh, sphere).status);
-    seen.push_back(SP::spherical_parameterize(mesh, sphere, SP::parameters::weighting(SP::Weighting::COTANGENT, budget)).status);
-    seen.push_back(SP::spherical_parameterize(mesh, sphere, SP::parameters::halfedge_weight_map(weight, budget)).status);
-    seen.push_back(SP::spherical_parameterize(mesh, sphere, SP::parameters::combine(SP::parameters::max_gauss_seidel_sweeps(1),
-                                                                                    SP::parameters::max_newton_sweeps(0))).status);
-    seen.push_back(SP::spherical_parameterize(mesh, sphere, SP::parameters::progress_callback([](const SP::Progress&) { return false; })).status);
+    seen.push_back(
+        SP::spherical_parameterize(mesh, sphere, SP::parameters::weighting(SP::Weighting::COTANGENT, budget)).status);
+    seen.push_back(
+        SP::spherical_parameterize(mesh, sphere, SP::parameters::halfedge_weight_map(weight, budget)).status);
+    seen.push_back(SP::spherical_parameterize(mesh, sphere,
+                                              SP::parameters::combine(SP::parameters::max_gauss_seidel_sweeps(1),
+                                                                      SP::parameters::max_newton_sweeps(0)))
+                       .status);
+    seen.push_back(SP::spherical_parameterize(
+                       mesh, sphere, SP::parameters::progress_callback([](const SP::Progress&) { return false; }))
+                       .status);
     seen.push_back(SP::spherical_parameterize(mesh, sphere, SP::parameters::weighting(SP::Weighting::USER_MAP)).status);
     (void)SP::check_input(mesh);
     (void)SP::certify_sphere_map(mesh, sphere);
     EXPECT_TRUE(snapshot(mesh) == before) << name << ": the mesh or one of its maps changed";
     std::string statuses;
-    for(SP::Error_code code : seen) statuses += std::string(SP::get_error_name(code)) + " ";
+    for(SP::Error_code code : seen)
+      statuses += std::string(SP::get_error_name(code)) + " ";
     std::cout << name << ": " << statuses << "\n";
-    if(name == "torus") EXPECT_EQ(seen[0], SP::Error_code::GENUS_NOT_ZERO);
-    if(name == "bunny") { EXPECT_EQ(seen[0], SP::Error_code::OK); EXPECT_EQ(seen[3], SP::Error_code::NOT_CONVERGED); }
-    if(name == "triakis") EXPECT_EQ(seen[0], SP::Error_code::NO_BALANCED_SOLUTION);
-    if(name == "bunny" || name == "degenerate") EXPECT_EQ(seen[4], SP::Error_code::CANCELLED);
+    if(name == "torus")
+      EXPECT_EQ(seen[0], SP::Error_code::GENUS_NOT_ZERO);
+    if(name == "bunny")
+    {
+      EXPECT_EQ(seen[0], SP::Error_code::OK);
+      EXPECT_EQ(seen[3], SP::Error_code::NOT_CONVERGED);
+    }
+    if(name == "triakis")
+      EXPECT_EQ(seen[0], SP::Error_code::NO_BALANCED_SOLUTION);
+    if(name == "bunny" || name == "degenerate")
+      EXPECT_EQ(seen[4], SP::Error_code::CANCELLED);
     EXPECT_EQ(seen[5], name == "torus" ? SP::Error_code::GENUS_NOT_ZERO : SP::Error_code::INVALID_WEIGHTS);
   }
 }

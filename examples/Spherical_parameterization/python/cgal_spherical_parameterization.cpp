@@ -46,22 +46,28 @@ using Vertices = py::array_t<double, py::array::c_style | py::array::forcecast>;
 using Faces = py::array_t<long long, py::array::c_style | py::array::forcecast>;
 
 // (n,3) and (m,3) arrays as a polygon soup; shapes and indices checked here, the rest by check_polygon_soup().
-void read_arrays(const Vertices& V, const Faces& F, std::vector<Point>& points, std::vector<std::vector<std::size_t>>& faces)
+void read_arrays(const Vertices& V, const Faces& F, std::vector<Point>& points,
+                 std::vector<std::vector<std::size_t>>& faces)
 {
-  if(V.ndim() != 2 || V.shape(1) != 3) throw py::value_error("INVALID_ARGUMENT: V must be an (n, 3) array of coordinates");
-  if(F.ndim() != 2 || F.shape(1) != 3) throw py::value_error("INVALID_ARGUMENT: F must be an (m, 3) array of vertex indices");
+  if(V.ndim() != 2 || V.shape(1) != 3)
+    throw py::value_error("INVALID_ARGUMENT: V must be an (n, 3) array of coordinates");
+  if(F.ndim() != 2 || F.shape(1) != 3)
+    throw py::value_error("INVALID_ARGUMENT: F must be an (m, 3) array of vertex indices");
   const auto v = V.unchecked<2>();
   const auto f = F.unchecked<2>();
   points.reserve(static_cast<std::size_t>(v.shape(0)));
-  for(py::ssize_t i = 0; i < v.shape(0); ++i) points.emplace_back(v(i, 0), v(i, 1), v(i, 2));
+  for(py::ssize_t i = 0; i < v.shape(0); ++i)
+    points.emplace_back(v(i, 0), v(i, 1), v(i, 2));
   faces.reserve(static_cast<std::size_t>(f.shape(0)));
-  for(py::ssize_t i = 0; i < f.shape(0); ++i) {
+  for(py::ssize_t i = 0; i < f.shape(0); ++i)
+  {
     std::vector<std::size_t> face;
-    for(int k = 0; k < 3; ++k) {
+    for(int k = 0; k < 3; ++k)
+    {
       const long long index = f(i, k);
       if(index < 0 || index >= v.shape(0))
-        throw py::value_error("INVALID_ARGUMENT: face " + std::to_string(i) + " refers to vertex " + std::to_string(index) +
-                              ", of " + std::to_string(v.shape(0)));
+        throw py::value_error("INVALID_ARGUMENT: face " + std::to_string(i) + " refers to vertex "
+                              + std::to_string(index) + ", of " + std::to_string(v.shape(0)));
       face.push_back(static_cast<std::size_t>(index));
     }
     faces.push_back(std::move(face));
@@ -75,10 +81,14 @@ Mesh checked_mesh(const Vertices& V, const Faces& F, bool full_check = true)
   std::vector<Point> points;
   std::vector<std::vector<std::size_t>> faces;
   read_arrays(V, F, points, faces);
-  if(full_check) {
+  if(full_check)
+  {
     const SP::Input_check check = SP::check_polygon_soup(points, faces);
-    if(!check) throw py::value_error(std::string(SP::get_error_name(check.status)) + ": " + check.message);
-  } else if(!CGAL::Polygon_mesh_processing::is_polygon_soup_a_polygon_mesh(faces)) {
+    if(!check)
+      throw py::value_error(std::string(SP::get_error_name(check.status)) + ": " + check.message);
+  }
+  else if(!CGAL::Polygon_mesh_processing::is_polygon_soup_a_polygon_mesh(faces))
+  {
     throw py::value_error("INVALID_ARGUMENT: (X, F) is not an oriented polygon mesh");
   }
   Mesh mesh;
@@ -134,7 +144,8 @@ py::dict result_dict(const SP::Result& r, const std::string& weights, const std:
   stages["newton"] = stage_dict(r.newton);
   d["stages"] = stages;
   py::list levels;
-  for(const SP::Level_statistics& level : r.levels) {
+  for(const SP::Level_statistics& level : r.levels)
+  {
     py::dict l;
     l["vertices"] = level.vertices;
     l["newton_steps"] = level.newton_steps;
@@ -148,16 +159,23 @@ py::dict result_dict(const SP::Result& r, const std::string& weights, const std:
 }
 
 py::tuple map_to_sphere(const Vertices& V, const Faces& F, const std::string& weights, double tolerance,
-                        const std::string& criterion, py::object max_seconds, bool admissible_weights, py::object progress)
+                        const std::string& criterion, py::object max_seconds, bool admissible_weights,
+                        py::object progress)
 {
   SP::Weighting weighting;
-  if(weights == "uniform") weighting = SP::Weighting::UNIFORM;
-  else if(weights == "cotangent") weighting = SP::Weighting::COTANGENT;
-  else if(weights == "mean_value") weighting = SP::Weighting::MEAN_VALUE;
-  else throw py::value_error("INVALID_ARGUMENT: weights must be \"uniform\", \"cotangent\" or \"mean_value\", not \"" + weights + "\"");
+  if(weights == "uniform")
+    weighting = SP::Weighting::UNIFORM;
+  else if(weights == "cotangent")
+    weighting = SP::Weighting::COTANGENT;
+  else if(weights == "mean_value")
+    weighting = SP::Weighting::MEAN_VALUE;
+  else
+    throw py::value_error("INVALID_ARGUMENT: weights must be \"uniform\", \"cotangent\" or \"mean_value\", not \""
+                          + weights + "\"");
   if(criterion != "imbalance" && criterion != "paper")
     throw py::value_error("INVALID_ARGUMENT: criterion must be \"imbalance\" or \"paper\", not \"" + criterion + "\"");
-  if(!(tolerance > 0.)) throw py::value_error("INVALID_ARGUMENT: tolerance must be positive");
+  if(!(tolerance > 0.))
+    throw py::value_error("INVALID_ARGUMENT: tolerance must be positive");
   const double budget = max_seconds.is_none() ? -1. : max_seconds.cast<double>();
   const Mesh mesh = checked_mesh(V, F);
 
@@ -167,18 +185,24 @@ py::tuple map_to_sphere(const Vertices& V, const Faces& F, const std::string& we
   auto last = std::chrono::steady_clock::now() - std::chrono::seconds(1);
   auto report = [&](const SP::Progress& p) {
     const auto now = std::chrono::steady_clock::now();
-    if(now - last < std::chrono::milliseconds(100)) return true;
+    if(now - last < std::chrono::milliseconds(100))
+      return true;
     last = now;
     py::gil_scoped_acquire gil;
-    if(PyErr_CheckSignals() != 0) {
+    if(PyErr_CheckSignals() != 0)
+    {
       interrupted = true;
       return false;
     }
-    if(progress.is_none()) return true;
-    try {
+    if(progress.is_none())
+      return true;
+    try
+    {
       py::object answer = progress(std::string(p.stage), p.iteration, p.residual, p.non_positive_faces, p.seconds);
       return answer.is_none() || answer.cast<bool>();
-    } catch(py::error_already_set& e) {
+    }
+    catch(py::error_already_set& e)
+    {
       callback_error = e.what();
       return false;
     }
@@ -191,18 +215,23 @@ py::tuple map_to_sphere(const Vertices& V, const Faces& F, const std::string& we
     py::gil_scoped_release no_gil;
     result = SP::spherical_parameterize(
         mesh, sphere,
-        SP::parameters::combine(SP::parameters::weighting(weighting), SP::parameters::tolerance(tolerance),
-                                SP::parameters::max_seconds(budget), SP::parameters::admissible_weights(admissible_weights),
-                                SP::parameters::progress_callback(report),
-                                SP::parameters::convergence_test(criterion == "paper" ? SP::Convergence_test::PAPER_RESIDUAL
-                                                                                      : SP::Convergence_test::IMBALANCE)));
+        SP::parameters::combine(
+            SP::parameters::weighting(weighting), SP::parameters::tolerance(tolerance),
+            SP::parameters::max_seconds(budget), SP::parameters::admissible_weights(admissible_weights),
+            SP::parameters::progress_callback(report),
+            SP::parameters::convergence_test(criterion == "paper" ? SP::Convergence_test::PAPER_RESIDUAL
+                                                                  : SP::Convergence_test::IMBALANCE)));
   }
-  if(interrupted) throw py::error_already_set();  // KeyboardInterrupt, set by PyErr_CheckSignals()
-  if(!callback_error.empty()) throw std::runtime_error("the progress callable raised: " + callback_error);
-  if(result.residual < 0.) throw py::value_error(std::string(SP::get_error_name(result.status)) + ": " + result.message);
+  if(interrupted)
+    throw py::error_already_set(); // KeyboardInterrupt, set by PyErr_CheckSignals()
+  if(!callback_error.empty())
+    throw std::runtime_error("the progress callable raised: " + callback_error);
+  if(result.residual < 0.)
+    throw py::value_error(std::string(SP::get_error_name(result.status)) + ": " + result.message);
   py::array_t<double> X({static_cast<py::ssize_t>(sphere_points.size()), py::ssize_t(3)});
   auto x = X.mutable_unchecked<2>();
-  for(std::size_t i = 0; i < sphere_points.size(); ++i) {
+  for(std::size_t i = 0; i < sphere_points.size(); ++i)
+  {
     x(static_cast<py::ssize_t>(i), 0) = sphere_points[i].x();
     x(static_cast<py::ssize_t>(i), 1) = sphere_points[i].y();
     x(static_cast<py::ssize_t>(i), 2) = sphere_points[i].z();
@@ -212,7 +241,7 @@ py::tuple map_to_sphere(const Vertices& V, const Faces& F, const std::string& we
 
 py::dict certify(const Vertices& X, const Faces& F)
 {
-  const Mesh mesh = checked_mesh(X, F, false);  // the positions are the map: its flips are for the certificate to count
+  const Mesh mesh = checked_mesh(X, F, false); // the positions are the map: its flips are for the certificate to count
   std::vector<Point> points(mesh.points().begin(), mesh.points().end());
   const SP::Sphere_map_certificate c =
       SP::certify_sphere_map(mesh, boost::make_iterator_property_map(points.begin(), get(CGAL::vertex_index, mesh)));
@@ -227,12 +256,14 @@ py::dict certify(const Vertices& X, const Faces& F)
 py::dict measure_distortion(const Vertices& V, const Vertices& X, const Faces& F)
 {
   const Mesh mesh = checked_mesh(V, F);
-  if(X.ndim() != 2 || X.shape(0) != V.shape(0) || X.shape(1) != 3) throw py::value_error("INVALID_ARGUMENT: X must have V's shape");
+  if(X.ndim() != 2 || X.shape(0) != V.shape(0) || X.shape(1) != 3)
+    throw py::value_error("INVALID_ARGUMENT: X must have V's shape");
   const auto x = X.unchecked<2>();
   std::vector<Point> sphere;
-  for(py::ssize_t i = 0; i < x.shape(0); ++i) sphere.emplace_back(x(i, 0), x(i, 1), x(i, 2));
-  const SP::Spherical_distortion d =
-      SP::measure_spherical_distortion(mesh, boost::make_iterator_property_map(sphere.begin(), get(CGAL::vertex_index, mesh)));
+  for(py::ssize_t i = 0; i < x.shape(0); ++i)
+    sphere.emplace_back(x(i, 0), x(i, 1), x(i, 2));
+  const SP::Spherical_distortion d = SP::measure_spherical_distortion(
+      mesh, boost::make_iterator_property_map(sphere.begin(), get(CGAL::vertex_index, mesh)));
   py::dict out;
   out["mean_angle_error_degrees"] = d.mean_angle_error_degrees;
   out["max_angle_error_degrees"] = d.max_angle_error_degrees;
@@ -254,27 +285,38 @@ py::tuple read_surface(const std::string& path)
     head.assign(magic, static_cast<std::size_t>(in.gcount()));
   }
   const bool gifti = path.size() >= 4 && path.compare(path.size() - 4, 4, ".gii") == 0;
-  if(gifti) {
+  if(gifti)
+  {
 #ifdef CGAL_SPHERICAL_PARAMETERIZATION_USE_GIFTI
     read = SP::IO::read_GIfTI_surface(path, points, faces);
 #else
     throw py::value_error("UNKNOWN_FORMAT: this module was built without the GIFTI library");
 #endif
-  } else if(SP::IO::internal::has_FreeSurfer_magic(head.data(), head.data() + head.size())) {
+  }
+  else if(SP::IO::internal::has_FreeSurfer_magic(head.data(), head.data() + head.size()))
+  {
     read = SP::IO::read_FreeSurfer_surface(path, points, faces);
-  } else {
+  }
+  else
+  {
     read = SP::IO::read_polygon_soup(path, points, faces);
   }
-  if(!read) throw py::value_error(std::string(SP::IO::get_file_status_name(read.status)) + ": " + read.message);
+  if(!read)
+    throw py::value_error(std::string(SP::IO::get_file_status_name(read.status)) + ": " + read.message);
   py::array_t<double> V({static_cast<py::ssize_t>(points.size()), py::ssize_t(3)});
   auto v = V.mutable_unchecked<2>();
   for(std::size_t i = 0; i < points.size(); ++i)
-    for(int k = 0; k < 3; ++k) v(static_cast<py::ssize_t>(i), k) = points[i][k];
+    for(int k = 0; k < 3; ++k)
+      v(static_cast<py::ssize_t>(i), k) = points[i][k];
   py::array_t<long long> Fa({static_cast<py::ssize_t>(faces.size()), py::ssize_t(3)});
   auto f = Fa.mutable_unchecked<2>();
-  for(std::size_t i = 0; i < faces.size(); ++i) {
-    if(faces[i].size() != 3) throw py::value_error("NOT_TRIANGLE_MESH: face " + std::to_string(i) + " has " + std::to_string(faces[i].size()) + " vertices");
-    for(int k = 0; k < 3; ++k) f(static_cast<py::ssize_t>(i), k) = static_cast<long long>(faces[i][static_cast<std::size_t>(k)]);
+  for(std::size_t i = 0; i < faces.size(); ++i)
+  {
+    if(faces[i].size() != 3)
+      throw py::value_error("NOT_TRIANGLE_MESH: face " + std::to_string(i) + " has " + std::to_string(faces[i].size())
+                            + " vertices");
+    for(int k = 0; k < 3; ++k)
+      f(static_cast<py::ssize_t>(i), k) = static_cast<long long>(faces[i][static_cast<std::size_t>(k)]);
   }
   return py::make_tuple(V, Fa);
 }
@@ -284,17 +326,19 @@ py::tuple read_surface(const std::string& path)
 PYBIND11_MODULE(cgal_spherical_parameterization, m)
 {
   m.doc() = "Bijective maps of closed genus-0 triangle meshes onto the unit sphere (CGAL Spherical Parameterization).";
-  m.def("map_to_sphere", &map_to_sphere, py::arg("V"), py::arg("F"), py::arg("weights") = "uniform", py::arg("tolerance") = 1e-6,
-        py::arg("criterion") = "imbalance", py::arg("max_seconds") = py::none(), py::arg("admissible_weights") = false,
-        py::arg("progress") = py::none(),
-        "Maps the mesh (V: (n,3) float64, F: (m,3) int) onto the unit sphere. Returns (X, info): X (n,3) float64 on the\n"
-        "unit sphere in V's vertex order, info a dict with the command line's JSON figures ('status', 'success',\n"
-        "'max_imbalance', 'flipped_faces', 'bijective', 'stages', ...). A map that is not converged or not bijective is\n"
-        "returned with its status; invalid input raises ValueError('CODE: message'). progress(stage, iteration,\n"
-        "residual, non_positive_faces, seconds) is called at most ten times a second; returning False stops the run.\n"
-        "Ctrl-C raises KeyboardInterrupt.");
+  m.def(
+      "map_to_sphere", &map_to_sphere, py::arg("V"), py::arg("F"), py::arg("weights") = "uniform",
+      py::arg("tolerance") = 1e-6, py::arg("criterion") = "imbalance", py::arg("max_seconds") = py::none(),
+      py::arg("admissible_weights") = false, py::arg("progress") = py::none(),
+      "Maps the mesh (V: (n,3) float64, F: (m,3) int) onto the unit sphere. Returns (X, info): X (n,3) float64 on the\n"
+      "unit sphere in V's vertex order, info a dict with the command line's JSON figures ('status', 'success',\n"
+      "'max_imbalance', 'flipped_faces', 'bijective', 'stages', ...). A map that is not converged or not bijective is\n"
+      "returned with its status; invalid input raises ValueError('CODE: message'). progress(stage, iteration,\n"
+      "residual, non_positive_faces, seconds) is called at most ten times a second; returning False stops the run.\n"
+      "Ctrl-C raises KeyboardInterrupt.");
   m.def("certify", &certify, py::arg("X"), py::arg("F"),
-        "Certifies a map onto the sphere with exact predicates: dict(bijective, flipped_faces, total_signed_area, faces).");
+        "Certifies a map onto the sphere with exact predicates: dict(bijective, flipped_faces, total_signed_area, "
+        "faces).");
   m.def("measure_distortion", &measure_distortion, py::arg("V"), py::arg("X"), py::arg("F"),
         "Angle and area distortion of the map X of the mesh (V, F): dict(mean_angle_error_degrees,\n"
         "max_angle_error_degrees, log_area_ratio_stddev).");

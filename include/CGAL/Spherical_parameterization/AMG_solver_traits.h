@@ -127,22 +127,22 @@ public:
   /// What the last setup and the last solve did.
   struct Statistics
   {
-    std::size_t number_of_setups = 0;          ///< setups (or direct factorizations) done so far
-    std::size_t number_of_solves = 0;          ///< solves done so far
-    std::size_t number_of_unknowns = 0;        ///< after the elimination of the diagonal rows
-    std::size_t number_of_eliminated_rows = 0; ///< rows with only a diagonal entry
-    bool symmetric = false;                    ///< whether the reduced matrix is numerically symmetric
-    bool direct_solver = false;                ///< whether the direct solver was used instead of AMG
+    std::size_t number_of_setups = 0;                       ///< setups (or direct factorizations) done so far
+    std::size_t number_of_solves = 0;                       ///< solves done so far
+    std::size_t number_of_unknowns = 0;                     ///< after the elimination of the diagonal rows
+    std::size_t number_of_eliminated_rows = 0;              ///< rows with only a diagonal entry
+    bool symmetric = false;                                 ///< whether the reduced matrix is numerically symmetric
+    bool direct_solver = false;                             ///< whether the direct solver was used instead of AMG
     Krylov_method krylov_method = Krylov_method::AUTOMATIC; ///< the method actually used
-    std::vector<std::size_t> level_sizes;      ///< unknowns per level, finest first
-    std::vector<std::size_t> level_nonzeros;   ///< nonzeros per level, finest first
-    double operator_complexity = 0.;           ///< total nonzeros of all levels / nonzeros of the finest
-    double grid_complexity = 0.;               ///< total unknowns of all levels / unknowns of the finest
-    std::size_t hierarchy_bytes = 0;           ///< memory of the matrices and work vectors of the hierarchy
-    int iterations = 0;                        ///< Krylov iterations of the last solve
-    double relative_residual = 0.;             ///< \f$ \|B - AX\| / \|B\| \f$ of the last solve
-    double setup_seconds = 0.;                 ///< time of the last setup
-    double solve_seconds = 0.;                 ///< time of the last solve
+    std::vector<std::size_t> level_sizes;                   ///< unknowns per level, finest first
+    std::vector<std::size_t> level_nonzeros;                ///< nonzeros per level, finest first
+    double operator_complexity = 0.;                        ///< total nonzeros of all levels / nonzeros of the finest
+    double grid_complexity = 0.;                            ///< total unknowns of all levels / unknowns of the finest
+    std::size_t hierarchy_bytes = 0; ///< memory of the matrices and work vectors of the hierarchy
+    int iterations = 0;              ///< Krylov iterations of the last solve
+    double relative_residual = 0.;   ///< \f$ \|B - AX\| / \|B\| \f$ of the last solve
+    double setup_seconds = 0.;       ///< time of the last setup
+    double solve_seconds = 0.;       ///< time of the last solve
   };
 
   /// @}
@@ -151,13 +151,13 @@ public:
   /// @{
 
   /// Constructor with the default parameters.
-  AMG_solver_traits() : m_parameters(), m_state(std::make_shared<State>()) { }
+  AMG_solver_traits() : m_parameters(), m_state(std::make_shared<State>()) {}
 
   /// Constructor.
   /// \param parameters setup and solve parameters
   explicit AMG_solver_traits(const Parameters& parameters)
     : m_parameters(parameters), m_state(std::make_shared<State>())
-  { }
+  {}
 
   /// @}
 
@@ -284,9 +284,9 @@ private:
     statistics.number_of_eliminated_rows = state.elimination.number_of_eliminated_rows();
     state.symmetric = internal::AMG::is_numerically_symmetric(reduced, m_parameters.symmetry_tolerance);
     statistics.symmetric = state.symmetric;
-    state.direct = std::size_t(reduced.number_of_rows)
-                 < (state.symmetric ? m_parameters.direct_solver_threshold
-                                    : m_parameters.direct_solver_threshold_non_symmetric);
+    state.direct =
+        std::size_t(reduced.number_of_rows)
+        < (state.symmetric ? m_parameters.direct_solver_threshold : m_parameters.direct_solver_threshold_non_symmetric);
     statistics.direct_solver = state.direct;
     state.krylov_method = m_parameters.krylov_method;
     if(state.krylov_method == Krylov_method::AUTOMATIC)
@@ -394,18 +394,18 @@ private:
       const Compressed_row_matrix& A = state.hierarchy.fine_matrix();
       switch(state.krylov_method)
       {
-        case Krylov_method::CONJUGATE_GRADIENT:
-          result = internal::AMG::conjugate_gradient(A, b, x, preconditioner, target, reference_norm,
-                                                     m_parameters.max_iterations, state.workspace);
-          break;
-        case Krylov_method::BICGSTAB:
-          result = internal::AMG::bicgstab(A, b, x, preconditioner, target, reference_norm,
-                                           m_parameters.max_iterations, state.workspace);
-          break;
-        default:
-          result = internal::AMG::gmres(A, b, x, preconditioner, target, reference_norm,
-                                        m_parameters.max_iterations, m_parameters.gmres_restart, state.workspace);
-          break;
+      case Krylov_method::CONJUGATE_GRADIENT:
+        result = internal::AMG::conjugate_gradient(A, b, x, preconditioner, target, reference_norm,
+                                                   m_parameters.max_iterations, state.workspace);
+        break;
+      case Krylov_method::BICGSTAB:
+        result = internal::AMG::bicgstab(A, b, x, preconditioner, target, reference_norm, m_parameters.max_iterations,
+                                         state.workspace);
+        break;
+      default:
+        result = internal::AMG::gmres(A, b, x, preconditioner, target, reference_norm, m_parameters.max_iterations,
+                                      m_parameters.gmres_restart, state.workspace);
+        break;
       }
     }
     state.statistics.iterations = result.iterations;

@@ -20,15 +20,17 @@ namespace Spherical_parameterization {
 /// multilevel start, after the coarsest level's, and again after a finer level's own two-disk guess where the level
 /// below it failed), then after every iteration of stages 2 and 3 that gave a new iterate, on every level (and,
 /// inside an iteration that lasts, the last report again with its time updated, at most every half second).
-struct Progress {
-  const char* stage = "";          ///< "initial guess", "gauss-seidel", "global newton" or "local newton".
+struct Progress
+{
+  const char* stage = ""; ///< "initial guess", "gauss-seidel", "global newton" or "local newton".
   /// Iterations so far of the current phase (0 for the initial guess): the count starts again with each phase of
   /// stage 3 (such as Newton's full steps, then the bijectivity-preserving ones) and on each level.
   std::size_t iteration = 0;
-  double residual = -1.;           ///< The paper's `Res` now.
-  double max_imbalance = -1.;      ///< The largest imbalance `e_i` (see `Convergence_test`) at the end of stage 1; -1 in the per-iteration reports.
+  double residual = -1.; ///< The paper's `Res` now.
+  double max_imbalance =
+      -1.; ///< The largest imbalance `e_i` (see `Convergence_test`) at the end of stage 1; -1 in the per-iteration reports.
   std::size_t non_positive_faces = 0; ///< Spherical triangles not positively oriented now.
-  double seconds = 0.;             ///< Since the call started.
+  double seconds = 0.;                ///< Since the call started.
 };
 
 } // namespace Spherical_parameterization

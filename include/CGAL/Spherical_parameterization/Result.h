@@ -22,33 +22,36 @@ namespace Spherical_parameterization {
 
 /// \ingroup PkgSphericalParameterizationRef
 /// Figures of one stage of the method.
-struct Stage_statistics {
+struct Stage_statistics
+{
   /// Stage 1: the pairs of disks embedded (1, or more when the disk solver failed and Eigen's sparse LU was tried,
   /// or when the weights folded the disks and Tutte's were tried; 0 with the multilevel start, whose levels are in
   /// `Result::levels`). Stage 2: the sweeps over the vertices. Stage 3: the iterations of the `nonlinear_solver`
   /// (Newton steps, or the local Newton's sweeps over the vertices).
   std::size_t iterations = 0;
-  double seconds = 0.;         ///< Wall-clock time of the stage.
-  double residual = -1.;       ///< The paper's `Res` at the end of the stage (-1 when not computed).
+  double seconds = 0.;               ///< Wall-clock time of the stage.
+  double residual = -1.;             ///< The paper's `Res` at the end of the stage (-1 when not computed).
   std::size_t linear_iterations = 0; ///< Stage 3: MINRES iterations of Newton's iterative linear solves (0 when
                                      ///< the systems were factorized).
 };
 
 /// \ingroup PkgSphericalParameterizationRef
 /// Figures of one level of the multilevel start (`Result::levels`).
-struct Level_statistics {
-  std::size_t vertices = 0;           ///< Vertices of the level's mesh.
-  std::size_t newton_steps = 0;       ///< Newton steps on this level (from the map carried up from the level below).
-  std::size_t linear_iterations = 0;  ///< MINRES iterations of those steps (0 when the systems were factorized).
-  double seconds = 0.;                ///< Wall-clock time of this level alone (coarsening, carrying up, Newton).
+struct Level_statistics
+{
+  std::size_t vertices = 0;          ///< Vertices of the level's mesh.
+  std::size_t newton_steps = 0;      ///< Newton steps on this level (from the map carried up from the level below).
+  std::size_t linear_iterations = 0; ///< MINRES iterations of those steps (0 when the systems were factorized).
+  double seconds = 0.;               ///< Wall-clock time of this level alone (coarsening, carrying up, Newton).
 };
 
 /// \ingroup PkgSphericalParameterizationRef
 /// The outcome of `spherical_parameterize()`. Figures that were not computed (after an input error) keep their
 /// default values: -1 for residuals, 0 for counts and times.
-struct Result {
-  Error_code status = Error_code::OK;   ///< `Error_code::OK` only when converged and certified bijective.
-  std::string message;                  ///< Human-readable explanation, with figures for input errors.
+struct Result
+{
+  Error_code status = Error_code::OK; ///< `Error_code::OK` only when converged and certified bijective.
+  std::string message;                ///< Human-readable explanation, with figures for input errors.
 
   /// The paper's residual \f$ Res = \frac{1}{n} \sqrt{\sum_i \| \alpha_i x_i - \sum_j w_{ij} x_j \|^2} \f$ with the
   /// weights of each vertex normalized to sum to one and \f$ \alpha_i = x_i \cdot \sum_j w_{ij} x_j \f$ (its
@@ -61,7 +64,7 @@ struct Result {
   /// own neighbourhood. The default convergence test is `max_imbalance <= tolerance`, except at vertices whose
   /// rounding floor is larger.
   double max_imbalance = -1.;
-  double imbalance_percentile_99 = -1.;   ///< The 99th percentile of the imbalances \f$ e_i \f$.
+  double imbalance_percentile_99 = -1.; ///< The 99th percentile of the imbalances \f$ e_i \f$.
   /// Vertices whose neighbourhood is so small (spherical edges below about 2e-9) that positions rounded to double
   /// carry an imbalance above the tolerance: \f$ 8 \cdot 2 \sqrt{3} \, 2^{-53} \sum_j |w_{ij}| / \sum_j |w_{ij}| s(|x_j - x_i|) \f$,
   /// their rounding floor. The imbalance test holds them to that floor instead of the tolerance; a floor above
@@ -76,30 +79,31 @@ struct Result {
   /// manual's "Converged"). For them the default test is `max_stationarity <= tolerance` instead of the imbalance;
   /// -1 for symmetric weights.
   double max_stationarity = -1.;
-  std::size_t unstationary_vertices = 0;  ///< Vertices whose stationarity exceeds the tolerance (non-symmetric weights).
+  std::size_t unstationary_vertices = 0; ///< Vertices whose stationarity exceeds the tolerance (non-symmetric weights).
   Convergence_test convergence_test = Convergence_test::IMBALANCE; ///< The test the iterations stopped on.
 
-  std::size_t flipped_faces = 0;        ///< Spherical triangles with `orientation(ORIGIN,p,q,r) != POSITIVE` (exact).
-  double total_signed_area = 0.;        ///< Sum of the signed spherical areas (4 pi when bijective).
-  bool bijective = false;               ///< No flipped face and a generic point covered once (exact predicates).
+  std::size_t flipped_faces = 0; ///< Spherical triangles with `orientation(ORIGIN,p,q,r) != POSITIVE` (exact).
+  double total_signed_area = 0.; ///< Sum of the signed spherical areas (4 pi when bijective).
+  bool bijective = false;        ///< No flipped face and a generic point covered once (exact predicates).
 
-  Stage_statistics initial_guess;       ///< Stage 1: separator, two disks, Moebius, stereographic projection.
-  Stage_statistics gauss_seidel;        ///< Stage 2: projected Gauss-Seidel while `Res` decreases.
-  Stage_statistics newton;              ///< Stage 3: the `nonlinear_solver` until the `convergence_test` holds.
-  double total_seconds = 0.;            ///< Wall-clock time of the whole call, input checks included.
+  Stage_statistics initial_guess; ///< Stage 1: separator, two disks, Moebius, stereographic projection.
+  Stage_statistics gauss_seidel;  ///< Stage 2: projected Gauss-Seidel while `Res` decreases.
+  Stage_statistics newton;        ///< Stage 3: the `nonlinear_solver` until the `convergence_test` holds.
+  double total_seconds = 0.;      ///< Wall-clock time of the whole call, input checks included.
   /// The multilevel start (named parameter `multilevel`), coarsest level first, the input mesh last; empty when the
   /// paper's two-disk guess on the input mesh was used. The coarsest level is solved by stages 1 to 3; its
   /// figures are in `initial_guess`, `gauss_seidel` and `newton` only when no level above it was solved.
   std::vector<Level_statistics> levels;
 
-  std::size_t number_of_vertices = 0;   ///< Vertices of the input mesh.
-  std::size_t number_of_faces = 0;      ///< Faces of the input mesh.
-  std::size_t separator_size = 0;       ///< Vertices in METIS' separator.
-  std::size_t cut_loop_length = 0;      ///< Vertices on the loop shared by the two disks.
-  std::size_t initial_flipped_faces = 0;///< Non-positive spherical triangles of the initial guess.
+  std::size_t number_of_vertices = 0;          ///< Vertices of the input mesh.
+  std::size_t number_of_faces = 0;             ///< Faces of the input mesh.
+  std::size_t separator_size = 0;              ///< Vertices in METIS' separator.
+  std::size_t cut_loop_length = 0;             ///< Vertices on the loop shared by the two disks.
+  std::size_t initial_flipped_faces = 0;       ///< Non-positive spherical triangles of the initial guess.
   bool uniform_initial_guess_fallback = false; ///< The disks were embedded with uniform weights instead.
-  bool admissible_weights = false;      ///< The weights were made symmetric and positive (named parameter `admissible_weights`).
-  std::size_t raised_weights = 0;       ///< Edges whose weight `admissible_weights` raised to 1% of the local mean.
+  bool admissible_weights =
+      false; ///< The weights were made symmetric and positive (named parameter `admissible_weights`).
+  std::size_t raised_weights = 0; ///< Edges whose weight `admissible_weights` raised to 1% of the local mean.
   /// Vertices that a sweep moving one vertex at a time left where they were, summed over the sweeps of stages 2
   /// and 3: in projected Gauss-Seidel, a vertex whose move still folded one of its positive triangles after being
   /// halved 12 times (none with `preserve_bijectivity` off); in the local Newton sweeps (`Nonlinear_solver::LOCAL_NEWTON`,

@@ -26,12 +26,13 @@ namespace Spherical_parameterization {
 
 /// \ingroup PkgSphericalParameterizationRef
 /// What `certify_sphere_map()` found.
-struct Sphere_map_certificate {
-  std::size_t number_of_faces = 0;   ///< Faces of the mesh.
-  std::size_t flipped_faces = 0;     ///< Faces whose spherical triangle is not positively oriented (exact predicate).
-  double total_signed_area = 0.;     ///< Sum of the signed areas of the spherical triangles (4 pi for a bijection).
-  bool valid_mesh = false;           ///< The mesh passes `check_input()` (closed, connected, manifold, oriented, genus 0).
-  bool bijective = false;            ///< A valid mesh, no flipped face, a generic point covered once (both exact).
+struct Sphere_map_certificate
+{
+  std::size_t number_of_faces = 0; ///< Faces of the mesh.
+  std::size_t flipped_faces = 0;   ///< Faces whose spherical triangle is not positively oriented (exact predicate).
+  double total_signed_area = 0.;   ///< Sum of the signed areas of the spherical triangles (4 pi for a bijection).
+  bool valid_mesh = false; ///< The mesh passes `check_input()` (closed, connected, manifold, oriented, genus 0).
+  bool bijective = false;  ///< A valid mesh, no flipped face, a generic point covered once (both exact).
 };
 
 /// \ingroup PkgSphericalParameterizationRef
@@ -75,7 +76,8 @@ struct Sphere_map_certificate {
 ///     \cgalParamDefault{an automatically indexed internal map}
 ///   \cgalParamNEnd
 /// \cgalNamedParamsEnd
-template <typename TriangleMesh, typename VertexSphereMap, typename NamedParameters = CGAL::parameters::Default_named_parameters>
+template <typename TriangleMesh, typename VertexSphereMap,
+          typename NamedParameters = CGAL::parameters::Default_named_parameters>
 Sphere_map_certificate certify_sphere_map(const TriangleMesh& tm, VertexSphereMap vsm,
                                           const NamedParameters& np = CGAL::parameters::default_values())
 {
@@ -83,12 +85,17 @@ Sphere_map_certificate certify_sphere_map(const TriangleMesh& tm, VertexSphereMa
   std::vector<internal::Vector3> x = internal::read_sphere_map(tm, vsm, np);
   Sphere_map_certificate certificate;
   certificate.number_of_faces = mesh.polygons.size();
-  if(mesh.triangles.size() != mesh.polygons.size()) { certificate.flipped_faces = mesh.polygons.size(); return certificate; }
+  if(mesh.triangles.size() != mesh.polygons.size())
+  {
+    certificate.flipped_faces = mesh.polygons.size();
+    return certificate;
+  }
   // Orientation and area prove a bijection only for a closed, connected, oriented genus-0 surface.
   certificate.valid_mesh = internal::check_mesh_arrays(mesh).status == Error_code::OK;
   // Orientation does not depend on the radius; the areas are those of the radially projected triangles.
   std::vector<internal::Vector3> unit(x.size());
-  for(std::size_t i = 0; i < x.size(); ++i) {
+  for(std::size_t i = 0; i < x.size(); ++i)
+  {
     const double r = internal::length(x[i]);
     unit[i] = r > 0. ? x[i] * (1. / r) : x[i];
   }
@@ -104,8 +111,10 @@ Sphere_map_certificate certify_sphere_map(const TriangleMesh& tm, VertexSphereMa
 /// \param tm the mesh.
 /// \param vsm the map to certify.
 /// \param np optional named parameters: `vertex_point_map`, `geom_traits`, `vertex_index_map`.
-template <typename TriangleMesh, typename VertexSphereMap, typename NamedParameters = CGAL::parameters::Default_named_parameters>
-bool is_bijective_on_sphere(const TriangleMesh& tm, VertexSphereMap vsm, const NamedParameters& np = CGAL::parameters::default_values())
+template <typename TriangleMesh, typename VertexSphereMap,
+          typename NamedParameters = CGAL::parameters::Default_named_parameters>
+bool is_bijective_on_sphere(const TriangleMesh& tm, VertexSphereMap vsm,
+                            const NamedParameters& np = CGAL::parameters::default_values())
 {
   return certify_sphere_map(tm, vsm, np).bijective;
 }

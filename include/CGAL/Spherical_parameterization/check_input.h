@@ -30,9 +30,10 @@ namespace Spherical_parameterization {
 
 /// \ingroup PkgSphericalParameterizationRef
 /// The verdict of `check_input()`: an error code and a message with the figures (how many loops, the genus...).
-struct Input_check {
-  Error_code status = Error_code::OK;  ///< `Error_code::OK`, or the code of the first defect found.
-  std::string message;                 ///< `get_error_message(status)` with the figures of the defect.
+struct Input_check
+{
+  Error_code status = Error_code::OK; ///< `Error_code::OK`, or the code of the first defect found.
+  std::string message;                ///< `get_error_message(status)` with the figures of the defect.
   /// `true` when `status == Error_code::OK`.
   explicit operator bool() const { return status == Error_code::OK; }
 };
@@ -46,7 +47,8 @@ inline std::vector<Index_sets::handle> make_singletons(Index_sets& sets, std::si
 {
   std::vector<Index_sets::handle> handles;
   handles.reserve(n);
-  for(std::size_t i = 0; i < n; ++i) handles.push_back(sets.make_set(i));
+  for(std::size_t i = 0; i < n; ++i)
+    handles.push_back(sets.make_set(i));
   return handles;
 }
 
@@ -55,7 +57,8 @@ inline Input_check make_check(Error_code code, const std::string& details = std:
   Input_check check;
   check.status = code;
   check.message = get_error_message(code);
-  if(!details.empty()) check.message += ": " + details;
+  if(!details.empty())
+    check.message += ": " + details;
   return check;
 }
 
@@ -65,44 +68,59 @@ inline Input_check check_mesh_arrays(const Mesh_arrays& mesh)
 {
   const std::size_t nv = mesh.points.size();
   const std::size_t nf = mesh.polygons.size();
-  if(nf == 0) return make_check(Error_code::EMPTY_MESH);
+  if(nf == 0)
+    return make_check(Error_code::EMPTY_MESH);
 
   for(std::size_t v = 0; v < nv; ++v)
     if(!is_finite(mesh.points[v]))
       return make_check(Error_code::NON_FINITE_COORDINATES, "vertex " + std::to_string(v));
 
   std::size_t non_triangles = 0;
-  for(const auto& p : mesh.polygons) if(p.size() != 3) ++non_triangles;
+  for(const auto& p : mesh.polygons)
+    if(p.size() != 3)
+      ++non_triangles;
   if(non_triangles > 0)
-    return make_check(Error_code::NOT_TRIANGLE_MESH,
-                      std::to_string(non_triangles) + " of " + std::to_string(nf) + " faces have more or fewer than 3 vertices");
+    return make_check(Error_code::NOT_TRIANGLE_MESH, std::to_string(non_triangles) + " of " + std::to_string(nf)
+                                                         + " faces have more or fewer than 3 vertices");
 
   std::size_t repeated = 0;
-  for(const auto& p : mesh.polygons) {
+  for(const auto& p : mesh.polygons)
+  {
     for(int i : p)
       if(i < 0 || static_cast<std::size_t>(i) >= nv)
-        return make_check(Error_code::DEGENERATE_FACE, "a face refers to a vertex that does not exist (index " +
-                                                       (i < 0 ? std::string("out of range") : std::to_string(i)) + ")");
-    if(p[0] == p[1] || p[1] == p[2] || p[2] == p[0]) ++repeated;
+        return make_check(Error_code::DEGENERATE_FACE, "a face refers to a vertex that does not exist (index "
+                                                           + (i < 0 ? std::string("out of range") : std::to_string(i))
+                                                           + ")");
+    if(p[0] == p[1] || p[1] == p[2] || p[2] == p[0])
+      ++repeated;
   }
   if(repeated > 0)
     return make_check(Error_code::DEGENERATE_FACE, std::to_string(repeated) + " faces repeat a vertex");
 
   // Undirected edges with the direction in which each face uses them, bucketed by their smaller vertex (a
   // counting sort: sorting all 3 nf uses at once took most of the time of these checks on large meshes).
-  struct Edge_use { int other; int face; bool forward; };
+  struct Edge_use
+  {
+    int other;
+    int face;
+    bool forward;
+  };
   std::vector<std::size_t> bucket(nv + 1, 0);
-  for(std::size_t f = 0; f < nf; ++f) {
+  for(std::size_t f = 0; f < nf; ++f)
+  {
     const auto& p = mesh.polygons[f];
-    for(int k = 0; k < 3; ++k) ++bucket[static_cast<std::size_t>(std::min(p[k], p[(k + 1) % 3])) + 1];
+    for(int k = 0; k < 3; ++k)
+      ++bucket[static_cast<std::size_t>(std::min(p[k], p[(k + 1) % 3])) + 1];
   }
   std::partial_sum(bucket.begin(), bucket.end(), bucket.begin());
   std::vector<Edge_use> uses(3 * nf);
   {
     std::vector<std::size_t> fill(bucket.begin(), bucket.end() - 1);
-    for(std::size_t f = 0; f < nf; ++f) {
+    for(std::size_t f = 0; f < nf; ++f)
+    {
       const auto& p = mesh.polygons[f];
-      for(int k = 0; k < 3; ++k) {
+      for(int k = 0; k < 3; ++k)
+      {
         const int a = p[k], b = p[(k + 1) % 3];
         uses[fill[static_cast<std::size_t>(std::min(a, b))]++] = {std::max(a, b), static_cast<int>(f), a < b};
       }
@@ -113,23 +131,33 @@ inline Input_check check_mesh_arrays(const Mesh_arrays& mesh)
   Index_sets border_loops;
   const std::vector<Index_sets::handle> border_vertex = make_singletons(border_loops, nv);
   std::vector<char> on_border(nv, 0);
-  for(std::size_t a = 0; a < nv; ++a) {
+  for(std::size_t a = 0; a < nv; ++a)
+  {
     const auto first = uses.begin() + static_cast<std::ptrdiff_t>(bucket[a]);
     const auto last = uses.begin() + static_cast<std::ptrdiff_t>(bucket[a + 1]);
-    std::sort(first, last, [](const Edge_use& l, const Edge_use& r) { return l.other < r.other || (l.other == r.other && l.face < r.face); });
-    for(auto i = first; i != last;) {
+    std::sort(first, last, [](const Edge_use& l, const Edge_use& r) {
+      return l.other < r.other || (l.other == r.other && l.face < r.face);
+    });
+    for(auto i = first; i != last;)
+    {
       auto j = i;
-      while(j != last && j->other == i->other) ++j;
+      while(j != last && j->other == i->other)
+        ++j;
       ++number_of_edges;
       const auto count = j - i;
-      if(count == 1) {
+      if(count == 1)
+      {
         ++border_edges;
         const std::size_t b = static_cast<std::size_t>(i->other);
         border_loops.unify_sets(border_vertex[a], border_vertex[b]);
         on_border[a] = on_border[b] = 1;
-      } else if(count > 2) {
+      }
+      else if(count > 2)
+      {
         ++non_manifold_edges;
-      } else if(i->forward == (i + 1)->forward) {
+      }
+      else if(i->forward == (i + 1)->forward)
+      {
         ++misoriented_edges;
       }
       i = j;
@@ -138,19 +166,27 @@ inline Input_check check_mesh_arrays(const Mesh_arrays& mesh)
   std::vector<Edge_use>().swap(uses);
 
   if(non_manifold_edges > 0)
-    return make_check(Error_code::NON_MANIFOLD_EDGE, std::to_string(non_manifold_edges) + " edges are shared by more than two faces");
-  if(border_edges > 0) {
+    return make_check(Error_code::NON_MANIFOLD_EDGE,
+                      std::to_string(non_manifold_edges) + " edges are shared by more than two faces");
+  if(border_edges > 0)
+  {
     std::size_t loops = 0;
-    for(std::size_t v = 0; v < nv; ++v) if(on_border[v] && border_loops.find(border_vertex[v]) == border_vertex[v]) ++loops;
-    return make_check(Error_code::HAS_BORDER, std::to_string(border_edges) + " boundary edges in " +
-                                              std::to_string(loops) + " boundary loop(s)");
+    for(std::size_t v = 0; v < nv; ++v)
+      if(on_border[v] && border_loops.find(border_vertex[v]) == border_vertex[v])
+        ++loops;
+    return make_check(Error_code::HAS_BORDER, std::to_string(border_edges) + " boundary edges in "
+                                                  + std::to_string(loops) + " boundary loop(s)");
   }
 
   // Faces around each vertex: the link (pairs of neighbours joined by a face) must be one cycle.
   std::vector<std::size_t> offsets(nv + 1, 0);
-  for(const auto& p : mesh.polygons) for(int i : p) ++offsets[static_cast<std::size_t>(i) + 1];
+  for(const auto& p : mesh.polygons)
+    for(int i : p)
+      ++offsets[static_cast<std::size_t>(i) + 1];
   std::size_t isolated = 0;
-  for(std::size_t v = 0; v < nv; ++v) if(offsets[v + 1] == 0) ++isolated;
+  for(std::size_t v = 0; v < nv; ++v)
+    if(offsets[v + 1] == 0)
+      ++isolated;
   if(isolated > 0)
     return make_check(Error_code::ISOLATED_VERTEX, std::to_string(isolated) + " vertices belong to no face");
   std::partial_sum(offsets.begin(), offsets.end(), offsets.begin());
@@ -164,26 +200,37 @@ inline Input_check check_mesh_arrays(const Mesh_arrays& mesh)
   std::size_t pinched = 0;
   std::vector<int> local;
   Index_sets ring;
-  for(std::size_t v = 0; v < nv; ++v) {
+  for(std::size_t v = 0; v < nv; ++v)
+  {
     local.clear();
-    for(std::size_t k = offsets[v]; k < offsets[v + 1]; ++k) { local.push_back(link[k].first); local.push_back(link[k].second); }
+    for(std::size_t k = offsets[v]; k < offsets[v + 1]; ++k)
+    {
+      local.push_back(link[k].first);
+      local.push_back(link[k].second);
+    }
     std::sort(local.begin(), local.end());
     local.erase(std::unique(local.begin(), local.end()), local.end());
     ring.clear();
     const std::vector<Index_sets::handle> neighbour = make_singletons(ring, local.size());
-    for(std::size_t k = offsets[v]; k < offsets[v + 1]; ++k) {
-      const std::size_t a = static_cast<std::size_t>(std::lower_bound(local.begin(), local.end(), link[k].first) - local.begin());
-      const std::size_t b = static_cast<std::size_t>(std::lower_bound(local.begin(), local.end(), link[k].second) - local.begin());
+    for(std::size_t k = offsets[v]; k < offsets[v + 1]; ++k)
+    {
+      const std::size_t a =
+          static_cast<std::size_t>(std::lower_bound(local.begin(), local.end(), link[k].first) - local.begin());
+      const std::size_t b =
+          static_cast<std::size_t>(std::lower_bound(local.begin(), local.end(), link[k].second) - local.begin());
       ring.unify_sets(neighbour[a], neighbour[b]);
     }
-    if(ring.number_of_sets() != 1) ++pinched;
+    if(ring.number_of_sets() != 1)
+      ++pinched;
   }
   if(pinched > 0)
-    return make_check(Error_code::NON_MANIFOLD_VERTEX, std::to_string(pinched) + " vertices have more than one fan of faces");
+    return make_check(Error_code::NON_MANIFOLD_VERTEX,
+                      std::to_string(pinched) + " vertices have more than one fan of faces");
 
   if(misoriented_edges > 0)
-    return make_check(Error_code::INCONSISTENT_ORIENTATION, std::to_string(misoriented_edges) +
-                                                            " edges are traversed in the same direction by their two faces");
+    return make_check(Error_code::INCONSISTENT_ORIENTATION,
+                      std::to_string(misoriented_edges)
+                          + " edges are traversed in the same direction by their two faces");
 
   Index_sets components;
   const std::vector<Index_sets::handle> vertex = make_singletons(components, nv);
@@ -194,10 +241,11 @@ inline Input_check check_mesh_arrays(const Mesh_arrays& mesh)
   if(number_of_components > 1)
     return make_check(Error_code::MULTIPLE_COMPONENTS, std::to_string(number_of_components) + " connected components");
 
-  const long long euler = static_cast<long long>(nv) - static_cast<long long>(number_of_edges) + static_cast<long long>(nf);
+  const long long euler =
+      static_cast<long long>(nv) - static_cast<long long>(number_of_edges) + static_cast<long long>(nf);
   if(euler != 2)
-    return make_check(Error_code::GENUS_NOT_ZERO, "genus " + std::to_string((2 - euler) / 2) +
-                                                  " (Euler characteristic " + std::to_string(euler) + ")");
+    return make_check(Error_code::GENUS_NOT_ZERO, "genus " + std::to_string((2 - euler) / 2) + " (Euler characteristic "
+                                                      + std::to_string(euler) + ")");
   return make_check(Error_code::OK);
 }
 
@@ -209,7 +257,8 @@ Mesh_arrays read_mesh_arrays(const TriangleMesh& tm, VertexIndexMap vim, const N
 {
   using CGAL::parameters::choose_parameter;
   using CGAL::parameters::get_parameter;
-  auto vpm = choose_parameter(get_parameter(np, CGAL::internal_np::vertex_point), get_const_property_map(CGAL::vertex_point, tm));
+  auto vpm = choose_parameter(get_parameter(np, CGAL::internal_np::vertex_point),
+                              get_const_property_map(CGAL::vertex_point, tm));
   using Geom_traits = typename CGAL::GetGeomTraits<TriangleMesh, NamedParameters>::type;
   const Geom_traits gt = choose_parameter<Geom_traits>(get_parameter(np, CGAL::internal_np::geom_traits));
   const auto compute_x = gt.compute_x_3_object();
@@ -229,9 +278,11 @@ std::vector<Vector3> read_sphere_map(const TriangleMesh& tm, VertexSphereMap vsm
 {
   auto vim = CGAL::get_initialized_vertex_index_map(tm, np);
   std::vector<Vector3> x(static_cast<std::size_t>(num_vertices(tm)));
-  for(auto v : vertices(tm)) {
+  for(auto v : vertices(tm))
+  {
     const auto& p = get(vsm, v);
-    x[static_cast<std::size_t>(get(vim, v))] = Vector3(CGAL::to_double(p.x()), CGAL::to_double(p.y()), CGAL::to_double(p.z()));
+    x[static_cast<std::size_t>(get(vim, v))] =
+        Vector3(CGAL::to_double(p.x()), CGAL::to_double(p.y()), CGAL::to_double(p.z()));
   }
   return x;
 }
@@ -275,7 +326,8 @@ std::vector<Vector3> read_sphere_map(const TriangleMesh& tm, VertexSphereMap vsm
 template <typename TriangleMesh, typename NamedParameters = CGAL::parameters::Default_named_parameters>
 Input_check check_input(const TriangleMesh& tm, const NamedParameters& np = CGAL::parameters::default_values())
 {
-  return internal::check_mesh_arrays(internal::read_mesh_arrays(tm, CGAL::get_initialized_vertex_index_map(tm, np), np));
+  return internal::check_mesh_arrays(
+      internal::read_mesh_arrays(tm, CGAL::get_initialized_vertex_index_map(tm, np), np));
 }
 
 /// \ingroup PkgSphericalParameterizationRef
@@ -293,12 +345,15 @@ Input_check check_polygon_soup(const PointRange& points, const PolygonRange& pol
   mesh.points.reserve(points.size());
   for(const auto& p : points)
     mesh.points.emplace_back(CGAL::to_double(p.x()), CGAL::to_double(p.y()), CGAL::to_double(p.z()));
-  for(const auto& polygon : polygons) {
+  for(const auto& polygon : polygons)
+  {
     std::vector<int> face;
-    for(const auto i : polygon) {
+    for(const auto i : polygon)
+    {
       // An index past the points (or past int) must not wrap around onto an existing vertex.
       const long long index = static_cast<long long>(i);
-      face.push_back(index >= 0 && static_cast<unsigned long long>(index) < points.size() ? static_cast<int>(index) : -1);
+      face.push_back(index >= 0 && static_cast<unsigned long long>(index) < points.size() ? static_cast<int>(index)
+                                                                                          : -1);
     }
     mesh.polygons.push_back(std::move(face));
   }

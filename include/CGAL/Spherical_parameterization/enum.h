@@ -16,16 +16,18 @@ namespace Spherical_parameterization {
 
 /// \ingroup PkgSphericalParameterizationRef
 /// The edge weights `w_ij` of the balance equations `alpha_i x_i = sum_j w_ij x_j`.
-enum class Weighting {
-  UNIFORM,     ///< Tutte weights `w_ij = 1`: symmetric and positive, the case covered by the theory (default).
-  COTANGENT,   ///< Conformal weights `(cot a_ij + cot b_ij) / 2`: symmetric, may be negative.
-  MEAN_VALUE,  ///< Floater's mean-value weights: positive, not symmetric.
-  USER_MAP     ///< Weights read from the `halfedge_weight_map` named parameter.
+enum class Weighting
+{
+  UNIFORM,    ///< Tutte weights `w_ij = 1`: symmetric and positive, the case covered by the theory (default).
+  COTANGENT,  ///< Conformal weights `(cot a_ij + cot b_ij) / 2`: symmetric, may be negative.
+  MEAN_VALUE, ///< Floater's mean-value weights: positive, not symmetric.
+  USER_MAP    ///< Weights read from the `halfedge_weight_map` named parameter.
 };
 
 /// \ingroup PkgSphericalParameterizationRef
 /// The solver of stage 3 (after projected Gauss-Seidel).
-enum class Nonlinear_solver {
+enum class Nonlinear_solver
+{
   GLOBAL_NEWTON, ///< Newton on all vertices at once in tangent coordinates, with the sphere's conformal boosts handled
                  ///< exactly and bijectivity-preserving step control (default).
   LOCAL_NEWTON   ///< The paper's local Newton iteration on (theta, phi) with line search (Section 3.3).
@@ -33,7 +35,8 @@ enum class Nonlinear_solver {
 
 /// \ingroup PkgSphericalParameterizationRef
 /// When the iterations stop (named parameter `convergence_test`).
-enum class Convergence_test {
+enum class Convergence_test
+{
   /// Every vertex balanced in its own scale (default): the imbalance
   /// \f$ e_i = |t_i| / \sum_j |w_{ij}| \, s(|x_j - x_i|) \f$, with \f$ t_i \f$ the tangential part of
   /// \f$ \sum_j w_{ij} (x_j - x_i) \f$ (weights normalized to sum to one) and \f$ s(c) = c \sqrt{1 - c^2/4} \f$ the

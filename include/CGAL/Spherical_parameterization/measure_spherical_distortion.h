@@ -29,10 +29,11 @@ namespace Spherical_parameterization {
 /// \ingroup PkgSphericalParameterizationRef
 /// Distortion of a spherical map, in the spirit of CGAL SMP's `measure_distortion()`. Angles are those of the
 /// straight (chordal) triangles between the mapped points; areas are compared after normalizing both totals.
-struct Spherical_distortion {
-  double mean_angle_error_degrees = 0.;  ///< Mean of |angle on the sphere - angle on the mesh| over all corners.
-  double max_angle_error_degrees = 0.;   ///< Largest such difference.
-  double log_area_ratio_stddev = 0.;     ///< Standard deviation of log(relative sphere area / relative mesh area).
+struct Spherical_distortion
+{
+  double mean_angle_error_degrees = 0.; ///< Mean of |angle on the sphere - angle on the mesh| over all corners.
+  double max_angle_error_degrees = 0.;  ///< Largest such difference.
+  double log_area_ratio_stddev = 0.;    ///< Standard deviation of log(relative sphere area / relative mesh area).
 };
 
 /// \ingroup PkgSphericalParameterizationRef
@@ -70,24 +71,32 @@ struct Spherical_distortion {
 ///     \cgalParamDefault{an automatically indexed internal map}
 ///   \cgalParamNEnd
 /// \cgalNamedParamsEnd
-template <typename TriangleMesh, typename VertexSphereMap, typename NamedParameters = CGAL::parameters::Default_named_parameters>
+template <typename TriangleMesh, typename VertexSphereMap,
+          typename NamedParameters = CGAL::parameters::Default_named_parameters>
 Spherical_distortion measure_spherical_distortion(const TriangleMesh& tm, VertexSphereMap vsm,
                                                   const NamedParameters& np = CGAL::parameters::default_values())
 {
   using internal::Vector3;
   const internal::Mesh_arrays mesh = internal::read_mesh_arrays(tm, CGAL::get_initialized_vertex_index_map(tm, np), np);
   const std::vector<Vector3> x = internal::read_sphere_map(tm, vsm, np);
-  auto angle = [](const Vector3& a, const Vector3& b) { return std::atan2(internal::length(internal::cross(a, b)), internal::dot(a, b)); };
-  auto area = [](const Vector3& a, const Vector3& b, const Vector3& c) { return 0.5 * internal::length(internal::cross(b - a, c - a)); };
+  auto angle = [](const Vector3& a, const Vector3& b) {
+    return std::atan2(internal::length(internal::cross(a, b)), internal::dot(a, b));
+  };
+  auto area = [](const Vector3& a, const Vector3& b, const Vector3& c) {
+    return 0.5 * internal::length(internal::cross(b - a, c - a));
+  };
 
   Spherical_distortion distortion;
   double mesh_total = 0., sphere_total = 0.;
   std::vector<double> mesh_areas, sphere_areas;
   std::size_t corners = 0;
-  for(const auto& t : mesh.triangles) {
-    const Vector3 p[3] = {mesh.points[std::size_t(t[0])], mesh.points[std::size_t(t[1])], mesh.points[std::size_t(t[2])]};
+  for(const auto& t : mesh.triangles)
+  {
+    const Vector3 p[3] = {mesh.points[std::size_t(t[0])], mesh.points[std::size_t(t[1])],
+                          mesh.points[std::size_t(t[2])]};
     const Vector3 q[3] = {x[std::size_t(t[0])], x[std::size_t(t[1])], x[std::size_t(t[2])]};
-    for(int k = 0; k < 3; ++k) {
+    for(int k = 0; k < 3; ++k)
+    {
       const double a_mesh = angle(p[(k + 1) % 3] - p[k], p[(k + 2) % 3] - p[k]);
       const double a_sphere = angle(q[(k + 1) % 3] - q[k], q[(k + 2) % 3] - q[k]);
       const double error = std::abs(a_sphere - a_mesh) * 180. / CGAL_PI;
@@ -100,17 +109,21 @@ Spherical_distortion measure_spherical_distortion(const TriangleMesh& tm, Vertex
     mesh_total += mesh_areas.back();
     sphere_total += sphere_areas.back();
   }
-  if(corners > 0) distortion.mean_angle_error_degrees /= static_cast<double>(corners);
+  if(corners > 0)
+    distortion.mean_angle_error_degrees /= static_cast<double>(corners);
   double sum = 0., sum2 = 0.;
   std::size_t counted = 0;
-  for(std::size_t f = 0; f < mesh_areas.size(); ++f) {
-    if(!(mesh_areas[f] > 0.) || !(sphere_areas[f] > 0.)) continue;
+  for(std::size_t f = 0; f < mesh_areas.size(); ++f)
+  {
+    if(!(mesh_areas[f] > 0.) || !(sphere_areas[f] > 0.))
+      continue;
     const double l = std::log((sphere_areas[f] / sphere_total) / (mesh_areas[f] / mesh_total));
     sum += l;
     sum2 += l * l;
     ++counted;
   }
-  if(counted > 0) {
+  if(counted > 0)
+  {
     const double mean = sum / static_cast<double>(counted);
     distortion.log_area_ratio_stddev = std::sqrt((std::max)(0., sum2 / static_cast<double>(counted) - mean * mean));
   }

@@ -32,39 +32,78 @@ constexpr std::size_t default_max_gauss_seidel_sweeps = 1000;
 
 namespace internal_np {
 // Tag types of the package's own named parameters.
-enum weighting_t { weighting };
-enum halfedge_weight_map_t { halfedge_weight_map };
-enum tolerance_t { tolerance };
-enum max_gauss_seidel_sweeps_t { max_gauss_seidel_sweeps };
-enum max_newton_sweeps_t { max_newton_sweeps };
-enum max_seconds_t { max_seconds };
-enum preserve_bijectivity_t { preserve_bijectivity };
-enum nonlinear_solver_t { nonlinear_solver };
-enum metis_seed_t { metis_seed };
-enum progress_callback_t { progress_callback };
-enum admissible_weights_t { admissible_weights };
-enum convergence_test_t { convergence_test };
-enum multilevel_t { multilevel };
+enum weighting_t
+{
+  weighting
+};
+enum halfedge_weight_map_t
+{
+  halfedge_weight_map
+};
+enum tolerance_t
+{
+  tolerance
+};
+enum max_gauss_seidel_sweeps_t
+{
+  max_gauss_seidel_sweeps
+};
+enum max_newton_sweeps_t
+{
+  max_newton_sweeps
+};
+enum max_seconds_t
+{
+  max_seconds
+};
+enum preserve_bijectivity_t
+{
+  preserve_bijectivity
+};
+enum nonlinear_solver_t
+{
+  nonlinear_solver
+};
+enum metis_seed_t
+{
+  metis_seed
+};
+enum progress_callback_t
+{
+  progress_callback
+};
+enum admissible_weights_t
+{
+  admissible_weights
+};
+enum convergence_test_t
+{
+  convergence_test
+};
+enum multilevel_t
+{
+  multilevel
+};
 } // namespace internal_np
 
 namespace parameters {
 
 using CGAL::parameters::choose_parameter;
-using CGAL::parameters::get_parameter;
 using CGAL::parameters::default_values;
+using CGAL::parameters::get_parameter;
 
-#define CGAL_SPHERICAL_PARAMETERIZATION_NAMED_PARAMETER(NAME)                                           \
-  template <typename K>                                                                                \
-  CGAL::Named_function_parameters<K, internal_np::NAME##_t> NAME(const K& k)                           \
-  {                                                                                                    \
-    return CGAL::Named_function_parameters<K, internal_np::NAME##_t>(k);                               \
-  }                                                                                                    \
-  template <typename K, typename T, typename Tag, typename Base>                                       \
-  CGAL::Named_function_parameters<K, internal_np::NAME##_t, CGAL::Named_function_parameters<T, Tag, Base>> \
-  NAME(const K& k, const CGAL::Named_function_parameters<T, Tag, Base>& np)                            \
-  {                                                                                                    \
-    return CGAL::Named_function_parameters<K, internal_np::NAME##_t,                                   \
-                                           CGAL::Named_function_parameters<T, Tag, Base>>(k, np);      \
+#define CGAL_SPHERICAL_PARAMETERIZATION_NAMED_PARAMETER(NAME)                                                          \
+  template <typename K>                                                                                                \
+  CGAL::Named_function_parameters<K, internal_np::NAME##_t> NAME(const K& k)                                           \
+  {                                                                                                                    \
+    return CGAL::Named_function_parameters<K, internal_np::NAME##_t>(k);                                               \
+  }                                                                                                                    \
+  template <typename K, typename T, typename Tag, typename Base>                                                       \
+  CGAL::Named_function_parameters<K, internal_np::NAME##_t, CGAL::Named_function_parameters<T, Tag, Base>> NAME(       \
+      const K& k, const CGAL::Named_function_parameters<T, Tag, Base>& np)                                             \
+  {                                                                                                                    \
+    return CGAL::Named_function_parameters<K, internal_np::NAME##_t, CGAL::Named_function_parameters<T, Tag, Base>>(   \
+        k, np);                                                                                                        \
   }
 
 /// Weighting policy (`Weighting`), default `Weighting::UNIFORM`.
@@ -109,15 +148,13 @@ CGAL_SPHERICAL_PARAMETERIZATION_NAMED_PARAMETER(progress_callback)
 namespace internal {
 // Appends every parameter of `np` (outermost first) on top of `base`.
 template <typename Base>
-const Base& append(const CGAL::Named_function_parameters<bool, CGAL::internal_np::all_default_t>&,
-                   const Base& base)
+const Base& append(const CGAL::Named_function_parameters<bool, CGAL::internal_np::all_default_t>&, const Base& base)
 {
   return base;
 }
 
 template <typename T, typename Tag, typename Base>
-auto append(const CGAL::Named_function_parameters<T, Tag, CGAL::internal_np::No_property>& np,
-            const Base& base)
+auto append(const CGAL::Named_function_parameters<T, Tag, CGAL::internal_np::No_property>& np, const Base& base)
 {
   return CGAL::Named_function_parameters<T, Tag, Base>(np.v, base);
 }

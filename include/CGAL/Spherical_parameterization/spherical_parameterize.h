@@ -217,7 +217,8 @@ Result spherical_parameterize(const TriangleMesh& tm, VertexSphereMap vsm,
   auto vim = CGAL::get_initialized_vertex_index_map(tm, np);
   internal::Mesh_arrays mesh = internal::read_mesh_arrays(tm, vim, np);
   const Input_check check = internal::check_mesh_arrays(mesh);
-  if(!check) {
+  if(!check)
+  {
     Result result;
     result.status = check.status;
     result.message = check.message;
@@ -225,7 +226,7 @@ Result spherical_parameterize(const TriangleMesh& tm, VertexSphereMap vsm,
     result.number_of_faces = mesh.polygons.size();
     return result;
   }
-  std::vector<std::vector<int>>().swap(mesh.polygons);  // checked: from here on the triangles say it all
+  std::vector<std::vector<int>>().swap(mesh.polygons); // checked: from here on the triangles say it all
   internal::renumber_for_locality(mesh);
 
   constexpr bool has_user_weights = !is_default_parameter<NamedParameters, internal_np::halfedge_weight_map_t>::value;
@@ -234,24 +235,29 @@ Result spherical_parameterize(const TriangleMesh& tm, VertexSphereMap vsm,
   options.parallel = std::is_convertible<ConcurrencyTag, CGAL::Parallel_tag>::value;
   options.weighting = choose_parameter(get_parameter(np, internal_np::weighting),
                                        has_user_weights ? Weighting::USER_MAP : Weighting::UNIFORM);
-  options.nonlinear_solver = choose_parameter(get_parameter(np, internal_np::nonlinear_solver), Nonlinear_solver::GLOBAL_NEWTON);
+  options.nonlinear_solver =
+      choose_parameter(get_parameter(np, internal_np::nonlinear_solver), Nonlinear_solver::GLOBAL_NEWTON);
   options.metis_seed = choose_parameter(get_parameter(np, internal_np::metis_seed), 0);
   options.metis_options = internal::metis_options_pointer(
       choose_parameter(get_parameter(np, CGAL::internal_np::METIS_options), static_cast<idx_t*>(nullptr)));
   options.verbose = choose_parameter(get_parameter(np, CGAL::internal_np::verbose), false);
   options.iterations.tolerance = choose_parameter(get_parameter(np, internal_np::tolerance), 1e-6);
-  options.iterations.convergence_test = choose_parameter(get_parameter(np, internal_np::convergence_test), Convergence_test::IMBALANCE);
+  options.iterations.convergence_test =
+      choose_parameter(get_parameter(np, internal_np::convergence_test), Convergence_test::IMBALANCE);
   options.iterations.max_gauss_seidel_sweeps =
       choose_parameter(get_parameter(np, internal_np::max_gauss_seidel_sweeps), default_max_gauss_seidel_sweeps);
-  options.iterations.max_newton_sweeps = choose_parameter(get_parameter(np, internal_np::max_newton_sweeps), std::size_t(200000));
+  options.iterations.max_newton_sweeps =
+      choose_parameter(get_parameter(np, internal_np::max_newton_sweeps), std::size_t(200000));
   options.iterations.max_seconds = choose_parameter(get_parameter(np, internal_np::max_seconds), -1.);
-  options.iterations.preserve_bijectivity = choose_parameter(get_parameter(np, internal_np::preserve_bijectivity), true);
+  options.iterations.preserve_bijectivity =
+      choose_parameter(get_parameter(np, internal_np::preserve_bijectivity), true);
   options.multilevel = choose_parameter(get_parameter(np, internal_np::multilevel), true);
   // Progress: the user's callback sees the end of stage 1 and every iteration; verbose prints at most once a second.
   std::function<bool(const Progress&)> user_callback;
   if constexpr(!is_default_parameter<NamedParameters, internal_np::progress_callback_t>::value)
     user_callback = get_parameter(np, internal_np::progress_callback);
-  if(user_callback || options.verbose) {
+  if(user_callback || options.verbose)
+  {
     const bool verbose = options.verbose;
     auto last_print = std::make_shared<double>(-1.);
     // The last report sent, which the polls below repeat: the stage-level one (the end of stage 1) counts too, so
@@ -261,15 +267,16 @@ Result spherical_parameterize(const TriangleMesh& tm, VertexSphereMap vsm,
     auto last = std::make_shared<Progress>();
     options.report = [user_callback, verbose, last_print, last](const Progress& progress) {
       *last = progress;
-      if(verbose && progress.iteration > 0 && progress.seconds - *last_print >= 1.) {
+      if(verbose && progress.iteration > 0 && progress.seconds - *last_print >= 1.)
+      {
         *last_print = progress.seconds;
         std::cerr << "  " << progress.stage << " iteration " << progress.iteration << ": Res " << progress.residual
                   << ", non-positive faces " << progress.non_positive_faces << ", " << progress.seconds << " s\n";
       }
       return !user_callback || user_callback(progress);
     };
-    options.iterations.progress = [report = options.report, clock, last](const char* stage, std::size_t sweep, double residual,
-                                                                          std::size_t invalid) {
+    options.iterations.progress = [report = options.report, clock, last](const char* stage, std::size_t sweep,
+                                                                         double residual, std::size_t invalid) {
       last->stage = stage;
       last->iteration = sweep;
       last->residual = residual;
@@ -283,7 +290,8 @@ Result spherical_parameterize(const TriangleMesh& tm, VertexSphereMap vsm,
     auto last_poll = std::make_shared<double>(0.);
     options.iterations.keep_going = [report = options.report, clock, last, last_poll]() {
       const double now = clock.time();
-      if(*last->stage == '\0' || now - *last_poll < 0.5) return true;
+      if(*last->stage == '\0' || now - *last_poll < 0.5)
+        return true;
       *last_poll = now;
       last->seconds = now;
       return report(*last);
@@ -295,30 +303,40 @@ Result spherical_parameterize(const TriangleMesh& tm, VertexSphereMap vsm,
   std::string weight_message;
   std::function<double(std::size_t, int)> user_weight;
   std::vector<std::pair<std::uint64_t, double>> user_table;
-  if constexpr(has_user_weights) {
+  if constexpr(has_user_weights)
+  {
     auto weight_map = get_parameter(np, internal_np::halfedge_weight_map);
-    for(auto h : halfedges(tm)) {
-      if(is_border(h, tm)) continue;
+    for(auto h : halfedges(tm))
+    {
+      if(is_border(h, tm))
+        continue;
       const std::uint64_t i = static_cast<std::uint64_t>(get(vim, target(h, tm)));
       const std::uint64_t j = static_cast<std::uint64_t>(get(vim, source(h, tm)));
       user_table.emplace_back(i << 32 | j, static_cast<double>(get(weight_map, h)));
     }
     std::sort(user_table.begin(), user_table.end());
     user_weight = [&user_table, &mesh](std::size_t i, int j) {
-      const std::uint64_t key = static_cast<std::uint64_t>(internal::input_vertex_index(mesh, i)) << 32
-                                | static_cast<std::uint64_t>(internal::input_vertex_index(mesh, static_cast<std::size_t>(j)));
-      auto it = std::lower_bound(user_table.begin(), user_table.end(), key,
-                                 [](const std::pair<std::uint64_t, double>& entry, std::uint64_t k) { return entry.first < k; });
+      const std::uint64_t key =
+          static_cast<std::uint64_t>(internal::input_vertex_index(mesh, i)) << 32
+          | static_cast<std::uint64_t>(internal::input_vertex_index(mesh, static_cast<std::size_t>(j)));
+      auto it = std::lower_bound(
+          user_table.begin(), user_table.end(), key,
+          [](const std::pair<std::uint64_t, double>& entry, std::uint64_t k) { return entry.first < k; });
       return it != user_table.end() && it->first == key ? it->second : 0.;
     };
-  } else if(options.weighting == Weighting::USER_MAP) {
+  }
+  else if(options.weighting == Weighting::USER_MAP)
+  {
     Result result;
     result.status = Error_code::INVALID_WEIGHTS;
-    result.message = std::string(get_error_message(result.status)) + ": Weighting::USER_MAP needs the halfedge_weight_map parameter";
+    result.message =
+        std::string(get_error_message(result.status)) + ": Weighting::USER_MAP needs the halfedge_weight_map parameter";
     return result;
   }
-  const Error_code weight_status = internal::assign_weights(system, mesh, options.weighting, user_weight, weight_message);
-  if(weight_status != Error_code::OK) {
+  const Error_code weight_status =
+      internal::assign_weights(system, mesh, options.weighting, user_weight, weight_message);
+  if(weight_status != Error_code::OK)
+  {
     Result result;
     result.status = weight_status;
     result.message = std::string(get_error_message(weight_status)) + ": " + weight_message;
@@ -329,11 +347,12 @@ Result spherical_parameterize(const TriangleMesh& tm, VertexSphereMap vsm,
   }
   const bool admissible = choose_parameter(get_parameter(np, internal_np::admissible_weights), false);
   const std::size_t raised_weights = admissible ? internal::make_weights_admissible(system) : 0;
-  if(admissible) options.weighting = Weighting::USER_MAP;  // the disks use the same (admissible) weights
+  if(admissible)
+    options.weighting = Weighting::USER_MAP; // the disks use the same (admissible) weights
   options.admissible_weights = admissible;
 
-  using Solver = typename CGAL::internal_np::Lookup_named_param_def<CGAL::internal_np::sparse_linear_solver_t, NamedParameters,
-                                                                    Default_disk_solver_traits>::type;
+  using Solver = typename CGAL::internal_np::Lookup_named_param_def<CGAL::internal_np::sparse_linear_solver_t,
+                                                                    NamedParameters, Default_disk_solver_traits>::type;
   const Solver solver = choose_parameter<Solver>(get_parameter(np, CGAL::internal_np::sparse_linear_solver));
 
   std::vector<internal::Vector3> x;
@@ -341,15 +360,20 @@ Result spherical_parameterize(const TriangleMesh& tm, VertexSphereMap vsm,
   result.admissible_weights = admissible;
   result.raised_weights = raised_weights;
   result.clamped_weights = system.clamped_weights;
-  if(system.clamped_weights > 0) {
+  if(system.clamped_weights > 0)
+  {
     result.message += " [" + std::to_string(system.clamped_weights) + " weights of degenerate corners were clamped]";
-    if(options.verbose) std::cerr << "weights: " << system.clamped_weights << " of degenerate corners clamped\n";
+    if(options.verbose)
+      std::cerr << "weights: " << system.clamped_weights << " of degenerate corners clamped\n";
   }
-  if(x.size() == mesh.points.size()) {
+  if(x.size() == mesh.points.size())
+  {
     using Point = typename boost::property_traits<VertexSphereMap>::value_type;
     std::vector<std::size_t> internal_index(x.size());
-    for(std::size_t i = 0; i < x.size(); ++i) internal_index[internal::input_vertex_index(mesh, i)] = i;
-    for(auto v : vertices(tm)) {
+    for(std::size_t i = 0; i < x.size(); ++i)
+      internal_index[internal::input_vertex_index(mesh, i)] = i;
+    for(auto v : vertices(tm))
+    {
       const internal::Vector3& p = x[internal_index[static_cast<std::size_t>(get(vim, v))]];
       put(vsm, v, Point(p.x, p.y, p.z));
     }

@@ -10,9 +10,13 @@
 #include <CGAL/Surface_mesh.h>
 #include <CGAL/boost/graph/generators.h>
 #include <iostream>
-int main() {
-  using P = CGAL::Epick::Point_3; CGAL::Surface_mesh<P> m; CGAL::make_icosahedron(m, P(0,0,0), 1.);
+int main()
+{
+  using P = CGAL::Epick::Point_3;
+  CGAL::Surface_mesh<P> m;
+  CGAL::make_icosahedron(m, P(0, 0, 0), 1.);
   auto s = m.add_property_map<CGAL::Surface_mesh<P>::Vertex_index, P>("v:s").first;
   auto r = CGAL::Spherical_parameterization::spherical_parameterize(m, s);
-  std::cout << CGAL::Spherical_parameterization::get_error_name(r.status) << "\n"; return r ? 0 : 1;
+  std::cout << CGAL::Spherical_parameterization::get_error_name(r.status) << "\n";
+  return r ? 0 : 1;
 }

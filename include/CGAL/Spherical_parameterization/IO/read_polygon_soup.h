@@ -39,35 +39,45 @@ namespace IO {
 
 /// \ingroup PkgSphericalParameterizationRef
 /// Why a file could not be read as a mesh.
-enum class File_status {
+enum class File_status
+{
   OK = 0,
-  CANNOT_OPEN,         ///< The file does not exist or is not readable.
-  EMPTY_FILE,          ///< The file holds no data (or only white space and comments).
-  UNKNOWN_FORMAT,      ///< Not a format that can be read (e.g. an OFF file whose header is not `OFF`).
-  TRUNCATED,           ///< The data ends before the counts of the header are reached (or a gzip stream is cut).
-  INVALID_DATA,        ///< A number is malformed, a count is negative, or a face refers to a missing vertex.
-  GZIP_NOT_SUPPORTED   ///< A gzip file, and zlib was not compiled in.
+  CANNOT_OPEN,       ///< The file does not exist or is not readable.
+  EMPTY_FILE,        ///< The file holds no data (or only white space and comments).
+  UNKNOWN_FORMAT,    ///< Not a format that can be read (e.g. an OFF file whose header is not `OFF`).
+  TRUNCATED,         ///< The data ends before the counts of the header are reached (or a gzip stream is cut).
+  INVALID_DATA,      ///< A number is malformed, a count is negative, or a face refers to a missing vertex.
+  GZIP_NOT_SUPPORTED ///< A gzip file, and zlib was not compiled in.
 };
 
 /// \ingroup PkgSphericalParameterizationRef
 /// The enumerator's name, e.g. `"TRUNCATED"`.
 inline const char* get_file_status_name(File_status status)
 {
-  switch(status) {
-    case File_status::OK: return "OK";
-    case File_status::CANNOT_OPEN: return "CANNOT_OPEN";
-    case File_status::EMPTY_FILE: return "EMPTY_FILE";
-    case File_status::UNKNOWN_FORMAT: return "UNKNOWN_FORMAT";
-    case File_status::TRUNCATED: return "TRUNCATED";
-    case File_status::INVALID_DATA: return "INVALID_DATA";
-    case File_status::GZIP_NOT_SUPPORTED: return "GZIP_NOT_SUPPORTED";
+  switch(status)
+  {
+  case File_status::OK:
+    return "OK";
+  case File_status::CANNOT_OPEN:
+    return "CANNOT_OPEN";
+  case File_status::EMPTY_FILE:
+    return "EMPTY_FILE";
+  case File_status::UNKNOWN_FORMAT:
+    return "UNKNOWN_FORMAT";
+  case File_status::TRUNCATED:
+    return "TRUNCATED";
+  case File_status::INVALID_DATA:
+    return "INVALID_DATA";
+  case File_status::GZIP_NOT_SUPPORTED:
+    return "GZIP_NOT_SUPPORTED";
   }
   return "UNKNOWN";
 }
 
 /// \ingroup PkgSphericalParameterizationRef
 /// The verdict of a read: a status and a message that says where the file went wrong.
-struct File_read {
+struct File_read
+{
   File_status status = File_status::OK;
   std::string message;
   explicit operator bool() const { return status == File_status::OK; }
@@ -85,83 +95,117 @@ inline File_read file_error(File_status status, const std::string& message)
 
 inline bool is_gzip(const std::string& bytes)
 {
-  return bytes.size() >= 2 && static_cast<unsigned char>(bytes[0]) == 0x1f && static_cast<unsigned char>(bytes[1]) == 0x8b;
+  return bytes.size() >= 2 && static_cast<unsigned char>(bytes[0]) == 0x1f
+         && static_cast<unsigned char>(bytes[1]) == 0x8b;
 }
 
 // A cursor over the text that knows its line number: every message says where the file went wrong.
-class Text_cursor {
+class Text_cursor
+{
 public:
-  Text_cursor(const char* begin, const char* end) : p_(begin), end_(end) {}
+  Text_cursor(const char* begin, const char* end) : m_p(begin), m_end(end) {}
 
-  std::size_t line() const { return line_; }
-  bool at_end() const { return p_ == end_; }
+  std::size_t line() const { return m_line; }
+  bool at_end() const { return m_p == m_end; }
 
   // Skips white space (newlines too) and comments ('#' to the end of the line).
   void skip_blank()
   {
-    while(p_ != end_) {
-      if(*p_ == '#') { while(p_ != end_ && *p_ != '\n') ++p_; }
-      else if(*p_ == '\n') { ++line_; ++p_; }
-      else if(is_space(*p_)) ++p_;
-      else break;
+    while(m_p != m_end)
+    {
+      if(*m_p == '#')
+      {
+        while(m_p != m_end && *m_p != '\n')
+          ++m_p;
+      }
+      else if(*m_p == '\n')
+      {
+        ++m_line;
+        ++m_p;
+      }
+      else if(is_space(*m_p))
+        ++m_p;
+      else
+        break;
     }
   }
 
   // Skips spaces and a comment, but not the end of the line: true when the line has another token.
   bool more_on_line()
   {
-    while(p_ != end_ && *p_ != '\n' && is_space(*p_)) ++p_;
-    if(p_ != end_ && *p_ == '#') while(p_ != end_ && *p_ != '\n') ++p_;
-    return p_ != end_ && *p_ != '\n';
+    while(m_p != m_end && *m_p != '\n' && is_space(*m_p))
+      ++m_p;
+    if(m_p != m_end && *m_p == '#')
+      while(m_p != m_end && *m_p != '\n')
+        ++m_p;
+    return m_p != m_end && *m_p != '\n';
   }
 
   void next_line()
   {
-    while(p_ != end_ && *p_ != '\n') ++p_;
-    if(p_ != end_) { ++p_; ++line_; }
+    while(m_p != m_end && *m_p != '\n')
+      ++m_p;
+    if(m_p != m_end)
+    {
+      ++m_p;
+      ++m_line;
+    }
   }
 
   std::string token()
   {
-    const char* start = p_;
-    while(p_ != end_ && !is_space(*p_) && *p_ != '\n' && *p_ != '#') ++p_;
-    return std::string(start, p_);
+    const char* start = m_p;
+    while(m_p != m_end && !is_space(*m_p) && *m_p != '\n' && *m_p != '#')
+      ++m_p;
+    return std::string(start, m_p);
   }
 
   bool read_double(double& x)
   {
-    const char* start = p_;
-    if(p_ != end_ && *p_ == '+') ++p_;  // from_chars refuses a leading '+'
-    const std::from_chars_result r = std::from_chars(p_, end_, x);
-    if(r.ec == std::errc::result_out_of_range) {
+    const char* start = m_p;
+    if(m_p != m_end && *m_p == '+')
+      ++m_p; // from_chars refuses a leading '+'
+    const std::from_chars_result r = std::from_chars(m_p, m_end, x);
+    if(r.ec == std::errc::result_out_of_range)
+    {
       // Out of the double range: keep it as an infinity (or zero), for the input check to name.
       char* stop = nullptr;
-      const std::string text(p_, r.ptr);
+      const std::string text(m_p, r.ptr);
       x = std::strtod(text.c_str(), &stop);
-    } else if(r.ec != std::errc()) { p_ = start; return false; }
-    p_ = r.ptr;
+    }
+    else if(r.ec != std::errc())
+    {
+      m_p = start;
+      return false;
+    }
+    m_p = r.ptr;
     return ends_token();
   }
 
   bool read_count(unsigned long long& n)
   {
-    const char* start = p_;
-    if(p_ != end_ && *p_ == '+') ++p_;
-    const std::from_chars_result r = std::from_chars(p_, end_, n);
-    if(r.ec != std::errc()) { p_ = start; return false; }
-    p_ = r.ptr;
+    const char* start = m_p;
+    if(m_p != m_end && *m_p == '+')
+      ++m_p;
+    const std::from_chars_result r = std::from_chars(m_p, m_end, n);
+    if(r.ec != std::errc())
+    {
+      m_p = start;
+      return false;
+    }
+    m_p = r.ptr;
     return ends_token();
   }
 
-  std::string here() const { return "line " + std::to_string(line_); }
+  std::string here() const { return "line " + std::to_string(m_line); }
 
 private:
   static bool is_space(char c) { return c == ' ' || c == '\t' || c == '\r' || c == '\v' || c == '\f'; }
-  bool ends_token() const { return p_ == end_ || is_space(*p_) || *p_ == '\n' || *p_ == '#'; }
+  bool ends_token() const { return m_p == m_end || is_space(*m_p) || *m_p == '\n' || *m_p == '#'; }
 
-  const char* p_;
-  const char* end_;
-  std::size_t line_ = 1;
+  const char* m_p;
+  const char* m_end;
+  std::size_t m_line = 1;
 };
 
 } // namespace internal
@@ -179,31 +223,39 @@ File_read parse_OFF(const char* begin, const char* end, std::vector<Point>& poin
   polygons.clear();
   internal::Text_cursor in(begin, end);
   in.skip_blank();
-  if(in.at_end()) return file_error(File_status::EMPTY_FILE, "the file is empty");
+  if(in.at_end())
+    return file_error(File_status::EMPTY_FILE, "the file is empty");
 
   const std::string header = in.token();
   const std::size_t off = header.size() >= 3 ? header.size() - 3 : std::string::npos;
   bool known = off != std::string::npos && header.compare(off, 3, "OFF") == 0;
   std::string prefix = known ? header.substr(0, off) : std::string();
   // Optional ST (texture), C (colour), N (normal), in that order; no 4D, n-dimensional or binary variants.
-  if(known) {
+  if(known)
+  {
     std::string rest = prefix;
     for(const char* part : {"ST", "C", "N"})
-      if(rest.compare(0, std::char_traits<char>::length(part), part) == 0) rest.erase(0, std::char_traits<char>::length(part));
+      if(rest.compare(0, std::char_traits<char>::length(part), part) == 0)
+        rest.erase(0, std::char_traits<char>::length(part));
     known = rest.empty();
   }
   if(!known)
-    return file_error(File_status::UNKNOWN_FORMAT, "not an ASCII OFF file: the header is '" + header.substr(0, 40) +
-                                                   "', expected OFF (or COFF, NOFF, STOFF...)");
-  if(in.more_on_line() && in.token() == "BINARY") return file_error(File_status::UNKNOWN_FORMAT, "binary OFF is not supported");
+    return file_error(File_status::UNKNOWN_FORMAT, "not an ASCII OFF file: the header is '" + header.substr(0, 40)
+                                                       + "', expected OFF (or COFF, NOFF, STOFF...)");
+  if(in.more_on_line() && in.token() == "BINARY")
+    return file_error(File_status::UNKNOWN_FORMAT, "binary OFF is not supported");
 
   unsigned long long nv = 0, nf = 0, ne = 0;
   in.skip_blank();
-  if(in.at_end()) return file_error(File_status::TRUNCATED, "the file ends after its header: no vertex and face counts");
-  if(!in.read_count(nv)) return file_error(File_status::INVALID_DATA, in.here() + ": the vertex count is not a non-negative integer");
+  if(in.at_end())
+    return file_error(File_status::TRUNCATED, "the file ends after its header: no vertex and face counts");
+  if(!in.read_count(nv))
+    return file_error(File_status::INVALID_DATA, in.here() + ": the vertex count is not a non-negative integer");
   in.skip_blank();
-  if(in.at_end()) return file_error(File_status::TRUNCATED, "the file ends before the face count");
-  if(!in.read_count(nf)) return file_error(File_status::INVALID_DATA, in.here() + ": the face count is not a non-negative integer");
+  if(in.at_end())
+    return file_error(File_status::TRUNCATED, "the file ends before the face count");
+  if(!in.read_count(nf))
+    return file_error(File_status::INVALID_DATA, in.here() + ": the face count is not a non-negative integer");
   if(in.more_on_line() && !in.read_count(ne))
     return file_error(File_status::INVALID_DATA, in.here() + ": the edge count is not a non-negative integer");
   in.next_line();
@@ -214,55 +266,67 @@ File_read parse_OFF(const char* begin, const char* end, std::vector<Point>& poin
   points.reserve(static_cast<std::size_t>(std::min<unsigned long long>(nv, bytes / 6)));
   polygons.reserve(static_cast<std::size_t>(std::min<unsigned long long>(nf, bytes / 8)));
 
-  for(unsigned long long v = 0; v < nv; ++v) {
+  for(unsigned long long v = 0; v < nv; ++v)
+  {
     in.skip_blank();
     if(in.at_end())
-      return file_error(File_status::TRUNCATED, "the file ends after " + std::to_string(v) + " of the " + std::to_string(nv) +
-                                                " vertices announced by its header");
+      return file_error(File_status::TRUNCATED, "the file ends after " + std::to_string(v) + " of the "
+                                                    + std::to_string(nv) + " vertices announced by its header");
     double xyz[3];
-    for(int k = 0; k < 3; ++k) {
-      if(k > 0 && !in.more_on_line()) {
+    for(int k = 0; k < 3; ++k)
+    {
+      if(k > 0 && !in.more_on_line())
+      {
         in.skip_blank();
         if(in.at_end())
-          return file_error(File_status::TRUNCATED, "the file ends inside vertex " + std::to_string(v) + " of " + std::to_string(nv));
-        return file_error(File_status::INVALID_DATA, in.here() + ": vertex " + std::to_string(v) + " has fewer than 3 coordinates");
+          return file_error(File_status::TRUNCATED,
+                            "the file ends inside vertex " + std::to_string(v) + " of " + std::to_string(nv));
+        return file_error(File_status::INVALID_DATA,
+                          in.here() + ": vertex " + std::to_string(v) + " has fewer than 3 coordinates");
       }
       if(!in.read_double(xyz[k]))
-        return file_error(File_status::INVALID_DATA, in.here() + ": coordinate " + std::to_string(k) + " of vertex " +
-                                                     std::to_string(v) + " is not a number");
+        return file_error(File_status::INVALID_DATA, in.here() + ": coordinate " + std::to_string(k) + " of vertex "
+                                                         + std::to_string(v) + " is not a number");
     }
     points.emplace_back(xyz[0], xyz[1], xyz[2]);
-    in.next_line();  // colours, normals, texture coordinates
+    in.next_line(); // colours, normals, texture coordinates
   }
 
-  for(unsigned long long f = 0; f < nf; ++f) {
+  for(unsigned long long f = 0; f < nf; ++f)
+  {
     in.skip_blank();
     if(in.at_end())
-      return file_error(File_status::TRUNCATED, "the file ends after " + std::to_string(f) + " of the " + std::to_string(nf) +
-                                                " faces announced by its header");
+      return file_error(File_status::TRUNCATED, "the file ends after " + std::to_string(f) + " of the "
+                                                    + std::to_string(nf) + " faces announced by its header");
     unsigned long long degree = 0;
     if(!in.read_count(degree))
-      return file_error(File_status::INVALID_DATA, in.here() + ": face " + std::to_string(f) + " does not start with its number of vertices");
+      return file_error(File_status::INVALID_DATA,
+                        in.here() + ": face " + std::to_string(f) + " does not start with its number of vertices");
     Polygon polygon;
-    for(unsigned long long k = 0; k < degree; ++k) {
+    for(unsigned long long k = 0; k < degree; ++k)
+    {
       unsigned long long index = 0;
-      if(!in.more_on_line()) {
+      if(!in.more_on_line())
+      {
         in.skip_blank();
         if(in.at_end())
-          return file_error(File_status::TRUNCATED, "the file ends inside face " + std::to_string(f) + " of " + std::to_string(nf));
-        return file_error(File_status::INVALID_DATA, in.here() + ": face " + std::to_string(f) + " announces " +
-                                                     std::to_string(degree) + " vertices and lists " + std::to_string(k));
+          return file_error(File_status::TRUNCATED,
+                            "the file ends inside face " + std::to_string(f) + " of " + std::to_string(nf));
+        return file_error(File_status::INVALID_DATA, in.here() + ": face " + std::to_string(f) + " announces "
+                                                         + std::to_string(degree) + " vertices and lists "
+                                                         + std::to_string(k));
       }
       if(!in.read_count(index))
-        return file_error(File_status::INVALID_DATA, in.here() + ": vertex " + std::to_string(k) + " of face " + std::to_string(f) +
-                                                     " is not a non-negative integer");
+        return file_error(File_status::INVALID_DATA, in.here() + ": vertex " + std::to_string(k) + " of face "
+                                                         + std::to_string(f) + " is not a non-negative integer");
       if(index >= nv)
-        return file_error(File_status::INVALID_DATA, in.here() + ": face " + std::to_string(f) + " refers to vertex " +
-                                                     std::to_string(index) + ", but there are " + std::to_string(nv) + " vertices");
+        return file_error(File_status::INVALID_DATA, in.here() + ": face " + std::to_string(f) + " refers to vertex "
+                                                         + std::to_string(index) + ", but there are "
+                                                         + std::to_string(nv) + " vertices");
       polygon.push_back(static_cast<typename Polygon::value_type>(index));
     }
     polygons.push_back(std::move(polygon));
-    in.next_line();  // a colour may follow the indices
+    in.next_line(); // a colour may follow the indices
   }
   return File_read();
 }
@@ -276,27 +340,34 @@ inline File_read read_file_contents(const std::string& path, std::string& conten
   contents.clear();
   // A folder opens as a file on some systems, with a meaningless size.
   std::error_code ignored;
-  if(std::filesystem::is_directory(path, ignored)) return file_error(File_status::CANNOT_OPEN, "'" + path + "' is a folder");
+  if(std::filesystem::is_directory(path, ignored))
+    return file_error(File_status::CANNOT_OPEN, "'" + path + "' is a folder");
   std::ifstream in(path, std::ios::binary);
-  if(!in) return file_error(File_status::CANNOT_OPEN, "cannot open '" + path + "'");
+  if(!in)
+    return file_error(File_status::CANNOT_OPEN, "cannot open '" + path + "'");
   in.seekg(0, std::ios::end);
   const std::streamoff size = in.tellg();
-  if(!in || size < 0) return file_error(File_status::CANNOT_OPEN, "cannot read '" + path + "'");
+  if(!in || size < 0)
+    return file_error(File_status::CANNOT_OPEN, "cannot read '" + path + "'");
   in.seekg(0, std::ios::beg);
   contents.resize(static_cast<std::size_t>(size));
-  if(size > 0 && !in.read(&contents[0], size)) return file_error(File_status::CANNOT_OPEN, "cannot read '" + path + "'");
-  if(!internal::is_gzip(contents)) return File_read();
+  if(size > 0 && !in.read(&contents[0], size))
+    return file_error(File_status::CANNOT_OPEN, "cannot read '" + path + "'");
+  if(!internal::is_gzip(contents))
+    return File_read();
 #ifdef CGAL_SPHERICAL_PARAMETERIZATION_USE_ZLIB
   const std::string compressed = std::move(contents);
   contents.clear();
   z_stream stream{};
   // 16 + MAX_WBITS: a gzip header, not a raw zlib stream.
-  if(inflateInit2(&stream, 16 + MAX_WBITS) != Z_OK) return file_error(File_status::INVALID_DATA, "zlib could not start");
+  if(inflateInit2(&stream, 16 + MAX_WBITS) != Z_OK)
+    return file_error(File_status::INVALID_DATA, "zlib could not start");
   stream.next_in = reinterpret_cast<Bytef*>(const_cast<char*>(compressed.data()));
   stream.avail_in = static_cast<uInt>(compressed.size());
   std::vector<char> buffer(1 << 20);
   int code = Z_OK;
-  while(code == Z_OK) {
+  while(code == Z_OK)
+  {
     stream.next_out = reinterpret_cast<Bytef*>(buffer.data());
     stream.avail_out = static_cast<uInt>(buffer.size());
     code = inflate(&stream, Z_NO_FLUSH);
@@ -304,25 +375,30 @@ inline File_read read_file_contents(const std::string& path, std::string& conten
   }
   const bool input_exhausted = stream.avail_in == 0;
   inflateEnd(&stream);
-  if(code != Z_STREAM_END) {
+  if(code != Z_STREAM_END)
+  {
     contents.clear();
     // Z_BUF_ERROR with all the input used: the stream stops before its end.
     if(code == Z_BUF_ERROR && input_exhausted)
       return file_error(File_status::TRUNCATED, "the gzip stream of '" + path + "' is cut short");
-    return file_error(File_status::INVALID_DATA, "'" + path + "' is not a valid gzip file" + (stream.msg ? std::string(": ") + stream.msg : std::string()));
+    return file_error(File_status::INVALID_DATA, "'" + path + "' is not a valid gzip file"
+                                                     + (stream.msg ? std::string(": ") + stream.msg : std::string()));
   }
   return File_read();
 #else
   contents.clear();
-  return file_error(File_status::GZIP_NOT_SUPPORTED, "'" + path + "' is gzip-compressed, and this program was built without zlib");
+  return file_error(File_status::GZIP_NOT_SUPPORTED,
+                    "'" + path + "' is gzip-compressed, and this program was built without zlib");
 #endif
 }
 
 namespace internal {
 inline bool has_extension(std::string name, const std::string& extension)
 {
-  std::transform(name.begin(), name.end(), name.begin(), [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
-  return name.size() >= extension.size() && name.compare(name.size() - extension.size(), extension.size(), extension) == 0;
+  std::transform(name.begin(), name.end(), name.begin(),
+                 [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
+  return name.size() >= extension.size()
+         && name.compare(name.size() - extension.size(), extension.size(), extension) == 0;
 }
 } // namespace internal
 
@@ -337,18 +413,24 @@ File_read read_polygon_soup(const std::string& path, std::vector<Point>& points,
   polygons.clear();
   std::string contents;
   File_read read = read_file_contents(path, contents);
-  if(!read) return read;
-  const bool off_name = internal::has_extension(path, ".off") || internal::has_extension(path, ".off.gz") ||
-                        internal::has_extension(path, ".gz");
-  if(off_name || contents.empty()) {
+  if(!read)
+    return read;
+  const bool off_name = internal::has_extension(path, ".off") || internal::has_extension(path, ".off.gz")
+                        || internal::has_extension(path, ".gz");
+  if(off_name || contents.empty())
+  {
     read = parse_OFF(contents.data(), contents.data() + contents.size(), points, polygons);
-    if(read) read.message = std::to_string(points.size()) + " vertices, " + std::to_string(polygons.size()) + " faces";
-    else read.message = path + ": " + read.message;
+    if(read)
+      read.message = std::to_string(points.size()) + " vertices, " + std::to_string(polygons.size()) + " faces";
+    else
+      read.message = path + ": " + read.message;
     return read;
   }
   if(!CGAL::IO::read_polygon_soup(path, points, polygons, CGAL::parameters::verbose(false)))
-    return file_error(File_status::UNKNOWN_FORMAT, path + ": not a readable OBJ, PLY or STL file (empty, truncated or another format)");
-  if(points.empty() && polygons.empty()) return file_error(File_status::EMPTY_FILE, path + ": the file holds no vertex");
+    return file_error(File_status::UNKNOWN_FORMAT,
+                      path + ": not a readable OBJ, PLY or STL file (empty, truncated or another format)");
+  if(points.empty() && polygons.empty())
+    return file_error(File_status::EMPTY_FILE, path + ": the file holds no vertex");
   read.message = std::to_string(points.size()) + " vertices, " + std::to_string(polygons.size()) + " faces";
   return read;
 }

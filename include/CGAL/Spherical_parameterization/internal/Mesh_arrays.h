@@ -30,12 +30,13 @@ namespace CGAL {
 namespace Spherical_parameterization {
 namespace internal {
 
-struct Mesh_arrays {
-  std::vector<Vector3> points;                 // indexed by the vertex index map
-  std::vector<std::vector<int>> polygons;      // as read (any degree), one per face: what the input checks read
-  std::vector<std::array<int, 3>> triangles;   // filled when every polygon is a triangle (spherical_parameterize()
-                                               // moves them into its Sphere_system: they are stored once)
-  std::vector<int> input_index;                // after renumber_for_locality(): the input's index of each vertex
+struct Mesh_arrays
+{
+  std::vector<Vector3> points;               // indexed by the vertex index map
+  std::vector<std::vector<int>> polygons;    // as read (any degree), one per face: what the input checks read
+  std::vector<std::array<int, 3>> triangles; // filled when every polygon is a triangle (spherical_parameterize()
+                                             // moves them into its Sphere_system: they are stored once)
+  std::vector<int> input_index;              // after renumber_for_locality(): the input's index of each vertex
 };
 
 // The input's index of vertex i (for messages and for the output).
@@ -47,8 +48,10 @@ inline std::size_t input_vertex_index(const Mesh_arrays& mesh, std::size_t i)
 // Rotates a triangle so that it starts at its smallest index: a canonical form that keeps the orientation.
 inline std::array<int, 3> canonical_triangle(int a, int b, int c)
 {
-  if(b < a && b < c) return {b, c, a};
-  if(c < a && c < b) return {c, a, b};
+  if(b < a && b < c)
+    return {b, c, a};
+  if(c < a && c < b)
+    return {c, a, b};
   return {a, b, c};
 }
 
@@ -57,8 +60,13 @@ inline bool make_triangles(Mesh_arrays& mesh)
 {
   mesh.triangles.clear();
   mesh.triangles.reserve(mesh.polygons.size());
-  for(const std::vector<int>& p : mesh.polygons) {
-    if(p.size() != 3) { mesh.triangles.clear(); return false; }
+  for(const std::vector<int>& p : mesh.polygons)
+  {
+    if(p.size() != 3)
+    {
+      mesh.triangles.clear();
+      return false;
+    }
     mesh.triangles.push_back(canonical_triangle(p[0], p[1], p[2]));
   }
   return true;
@@ -92,17 +100,21 @@ constexpr std::size_t renumbering_minimum_vertices = 100000;
 inline void renumber_for_locality(Mesh_arrays& mesh, std::size_t minimum_vertices = renumbering_minimum_vertices)
 {
   const std::size_t n = mesh.points.size();
-  if(n == 0 || n < minimum_vertices) return;
+  if(n == 0 || n < minimum_vertices)
+    return;
   std::array<double, 3> low{mesh.points[0].x, mesh.points[0].y, mesh.points[0].z}, high = low;
   for(const Vector3& p : mesh.points)
-    for(int d = 0; d < 3; ++d) {
+    for(int d = 0; d < 3; ++d)
+    {
       low[d] = std::min(low[d], p[d]);
       high[d] = std::max(high[d], p[d]);
     }
   std::vector<std::pair<std::uint64_t, int>> keyed(n);
-  for(std::size_t i = 0; i < n; ++i) {
+  for(std::size_t i = 0; i < n; ++i)
+  {
     std::uint64_t key = 0;
-    for(int d = 0; d < 3; ++d) {
+    for(int d = 0; d < 3; ++d)
+    {
       const double extent = high[d] - low[d];
       const double cell = extent > 0. ? (mesh.points[i][d] - low[d]) / extent * 2097151. : 0.;
       key |= spread_bits_by_three(static_cast<std::uint64_t>(std::min(std::max(cell, 0.), 2097151.))) << d;
@@ -111,16 +123,19 @@ inline void renumber_for_locality(Mesh_arrays& mesh, std::size_t minimum_vertice
   }
   std::sort(keyed.begin(), keyed.end());
   std::vector<int> order(n);
-  for(std::size_t k = 0; k < n; ++k) order[k] = keyed[k].second;
+  for(std::size_t k = 0; k < n; ++k)
+    order[k] = keyed[k].second;
   std::vector<std::pair<std::uint64_t, int>>().swap(keyed);
   const std::vector<Vector3> points = mesh.points;
   std::vector<int> rank(n);
-  for(std::size_t k = 0; k < n; ++k) {
+  for(std::size_t k = 0; k < n; ++k)
+  {
     rank[static_cast<std::size_t>(order[k])] = static_cast<int>(k);
     mesh.points[k] = points[static_cast<std::size_t>(order[k])];
   }
   for(std::array<int, 3>& t : mesh.triangles)
-    t = canonical_triangle(rank[static_cast<std::size_t>(t[0])], rank[static_cast<std::size_t>(t[1])], rank[static_cast<std::size_t>(t[2])]);
+    t = canonical_triangle(rank[static_cast<std::size_t>(t[0])], rank[static_cast<std::size_t>(t[1])],
+                           rank[static_cast<std::size_t>(t[2])]);
   std::stable_sort(mesh.triangles.begin(), mesh.triangles.end(),
                    [](const std::array<int, 3>& a, const std::array<int, 3>& b) { return a[0] < b[0]; });
   std::vector<std::vector<int>>().swap(mesh.polygons);
@@ -134,13 +149,15 @@ Mesh_arrays read_face_graph(const FaceGraph& tm, VertexPointMap vpm, VertexIndex
   Mesh_arrays mesh;
   const std::size_t nv = static_cast<std::size_t>(num_vertices(tm));
   mesh.points.resize(nv);
-  for(auto v : vertices(tm)) {
+  for(auto v : vertices(tm))
+  {
     double x, y, z;
     coordinates(get(vpm, v), x, y, z);
     mesh.points[static_cast<std::size_t>(get(vim, v))] = Vector3(x, y, z);
   }
   mesh.polygons.reserve(static_cast<std::size_t>(num_faces(tm)));
-  for(auto f : faces(tm)) {
+  for(auto f : faces(tm))
+  {
     std::vector<int> polygon;
     for(auto v : vertices_around_face(halfedge(f, tm), tm))
       polygon.push_back(static_cast<int>(get(vim, v)));

@@ -50,28 +50,35 @@ namespace Spherical_parameterization {
 namespace internal {
 
 // Eigen's sparse LU on CGAL SMP's full system: the disk solver's fallback (public as Sparse_LU_disk_solver_traits).
-using Sparse_LU_solver_traits =
-    CGAL::Eigen_solver_traits<Eigen::SparseLU<CGAL::Eigen_sparse_matrix<double>::EigenType, Eigen::COLAMDOrdering<int>>>;
+using Sparse_LU_solver_traits = CGAL::Eigen_solver_traits<
+    Eigen::SparseLU<CGAL::Eigen_sparse_matrix<double>::EigenType, Eigen::COLAMDOrdering<int>>>;
 
 // CGAL's METIS functions take `METIS_options(&options)` (a pointer to the array); the array itself works too.
-inline const idx_t* metis_options_pointer(const idx_t* options) { return options; }
-inline const idx_t* metis_options_pointer(const idx_t (*options)[METIS_NOPTIONS]) { return options ? *options : nullptr; }
+inline const idx_t* metis_options_pointer(const idx_t* options)
+{
+  return options;
+}
+inline const idx_t* metis_options_pointer(const idx_t (*options)[METIS_NOPTIONS])
+{
+  return options ? *options : nullptr;
+}
 
-struct Pipeline_options {
+struct Pipeline_options
+{
   Weighting weighting = Weighting::UNIFORM;
-  bool admissible_weights = false;  // the weights were made symmetric and positive
+  bool admissible_weights = false; // the weights were made symmetric and positive
   Nonlinear_solver nonlinear_solver = Nonlinear_solver::GLOBAL_NEWTON;
   int metis_seed = 0;
-  const idx_t* metis_options = nullptr;  // METIS_NOPTIONS values, or nullptr for METIS' defaults and metis_seed
+  const idx_t* metis_options = nullptr; // METIS_NOPTIONS values, or nullptr for METIS' defaults and metis_seed
   bool verbose = false;
   bool parallel = false;  // CGAL::Parallel_tag with TBB
-  bool multilevel = true;  // the multilevel start where it applies (multilevel_applies)
+  bool multilevel = true; // the multilevel start where it applies (multilevel_applies)
   // A coarser level of the multilevel start: only Newton's full steps are tried. When they fail, the finer level
   // starts from its own two disks, so the fallbacks of stages 2 and 3 would be spent on a mere start (the manual's
   // Method section has what that cost).
   bool coarse_level = false;
-  Iteration_options iterations;   // its max_seconds counts from `call_clock`'s start
-  CGAL::Real_timer call_clock;    // started when the user's call began (input checks and stage 1 count too)
+  Iteration_options iterations; // its max_seconds counts from `call_clock`'s start
+  CGAL::Real_timer call_clock;  // started when the user's call began (input checks and stage 1 count too)
   // Stage-level progress (the user's callback and the verbose printing); false cancels.
   std::function<bool(const Progress&)> report;
 };
@@ -84,26 +91,32 @@ bool initial_sphere(const Mesh_arrays& mesh, const Sphere_system& system, const 
 {
   const std::size_t n = system.number_of_vertices;
   std::vector<double> u_a(n, 0.), v_a(n, 0.), u_b(n, 0.), v_b(n, 0.);
-  std::vector<char> side(n, 0);  // 1: disk A, 2: disk B (the loop counts as A)
+  std::vector<char> side(n, 0); // 1: disk A, 2: disk B (the loop counts as A)
   for(std::size_t f = 0; f < system.triangles.size(); ++f)
     for(int g : system.triangles[f])
-      if(partition.face_in_disk_a[f]) side[static_cast<std::size_t>(g)] = 1;
-      else if(side[static_cast<std::size_t>(g)] == 0) side[static_cast<std::size_t>(g)] = 2;
+      if(partition.face_in_disk_a[f])
+        side[static_cast<std::size_t>(g)] = 1;
+      else if(side[static_cast<std::size_t>(g)] == 0)
+        side[static_cast<std::size_t>(g)] = 2;
   bool embedded_a = false, embedded_b = false;
 #ifdef CGAL_LINKED_WITH_TBB
-  if(parallel) {
+  if(parallel)
+  {
     // Unqualified: a user's overload in the solver's namespace is found too.
     const SolverTraits solver_a = independent_copy(solver), solver_b = independent_copy(solver);
-    tbb::parallel_invoke([&] { embedded_a = embed_one_disk(mesh, system, partition, 1, weighting, solver_a, u_a, v_a); },
-                         [&] { embedded_b = embed_one_disk(mesh, system, partition, 0, weighting, solver_b, u_b, v_b); });
-  } else
+    tbb::parallel_invoke(
+        [&] { embedded_a = embed_one_disk(mesh, system, partition, 1, weighting, solver_a, u_a, v_a); },
+        [&] { embedded_b = embed_one_disk(mesh, system, partition, 0, weighting, solver_b, u_b, v_b); });
+  }
+  else
 #endif
   {
     CGAL_USE(parallel);
     embedded_a = embed_one_disk(mesh, system, partition, 1, weighting, solver, u_a, v_a);
     embedded_b = embedded_a && embed_one_disk(mesh, system, partition, 0, weighting, solver, u_b, v_b);
   }
-  if(!embedded_a || !embedded_b) return false;
+  if(!embedded_a || !embedded_b)
+    return false;
   x.resize(n);
   for(std::size_t i = 0; i < n; ++i)
     x[i] = side[i] == 2 ? inverse_stereographic(u_b[i], v_b[i], true) : inverse_stereographic(u_a[i], v_a[i], false);
@@ -111,45 +124,52 @@ bool initial_sphere(const Mesh_arrays& mesh, const Sphere_system& system, const 
 }
 
 template <typename SolverTraits>
-class Sphere_mapper {
+class Sphere_mapper
+{
 public:
-  Sphere_mapper(const Mesh_arrays& mesh, Sphere_system& system, const Pipeline_options& options, const SolverTraits& solver)
-    : mesh_(mesh), system_(system), options_(options), solver_(solver) {}
+  Sphere_mapper(const Mesh_arrays& mesh, Sphere_system& system, const Pipeline_options& options,
+                const SolverTraits& solver)
+    : m_mesh(mesh), m_system(system), m_options(options), m_solver(solver)
+  {}
 
   // The whole map into x: a start, stages 2 and 3, the certificate and the figures.
   Result map(std::vector<Vector3>& x)
   {
-    result_ = Result();
-    total_ = CGAL::Real_timer();
-    total_.start();
-    result_.number_of_vertices = system_.number_of_vertices;
-    result_.number_of_faces = system_.triangles.size();
-    iteration_options_ = options_.iterations;
-    if(multilevel_applies() && multilevel_start(x)) {
+    m_result = Result();
+    m_total = CGAL::Real_timer();
+    m_total.start();
+    m_result.number_of_vertices = m_system.number_of_vertices;
+    m_result.number_of_faces = m_system.triangles.size();
+    m_iteration_options = m_options.iterations;
+    if(multilevel_applies() && multilevel_start(x))
+    {
       // Stage 1 is everything before this mesh's smoothing and Newton steps (the coarser levels, solved, and the map
       // carried back); stage 2 the smoothing.
-      result_.newton.seconds = multilevel_newton_seconds_ - result_.gauss_seidel.seconds;
-      result_.initial_guess.seconds = total_.time() - multilevel_newton_seconds_;
-      result_.newton.iterations = newton_.sweeps;
-      result_.newton.linear_iterations = newton_.linear_iterations;
-      result_.newton.residual = newton_.residual;
-    } else {
-      result_.levels.clear();
-      if(!two_disk_start(x)) return result_;
+      m_result.newton.seconds = m_multilevel_newton_seconds - m_result.gauss_seidel.seconds;
+      m_result.initial_guess.seconds = m_total.time() - m_multilevel_newton_seconds;
+      m_result.newton.iterations = m_newton.sweeps;
+      m_result.newton.linear_iterations = m_newton.linear_iterations;
+      m_result.newton.residual = m_newton.residual;
+    }
+    else
+    {
+      m_result.levels.clear();
+      if(!two_disk_start(x))
+        return m_result;
       iterate(x);
     }
     certify_and_report(x);
-    result_.total_seconds = total_.time();
-    return result_;
+    m_result.total_seconds = m_total.time();
+    return m_result;
   }
 
 private:
   bool multilevel_applies() const
   {
-    return options_.multilevel && options_.weighting == Weighting::UNIFORM && system_.symmetric &&
-           options_.nonlinear_solver == Nonlinear_solver::GLOBAL_NEWTON &&
-           system_.number_of_vertices >= options_.iterations.tuning.multilevel_min_vertices &&
-           options_.iterations.max_newton_sweeps > 0;
+    return m_options.multilevel && m_options.weighting == Weighting::UNIFORM && m_system.symmetric
+           && m_options.nonlinear_solver == Nonlinear_solver::GLOBAL_NEWTON
+           && m_system.number_of_vertices >= m_options.iterations.tuning.multilevel_min_vertices
+           && m_options.iterations.max_newton_sweeps > 0;
   }
 
   // The multilevel start: the mesh collapsed to about `Solver_tuning::multilevel_coarsening_ratio` of its vertices, that mesh
@@ -165,72 +185,81 @@ private:
   {
     CGAL::Real_timer clock;
     clock.start();
-    const std::size_t n = system_.number_of_vertices;
-    Coarsening coarsening = coarsen_mesh(mesh_.points, system_.triangles,
-                                         static_cast<std::size_t>(options_.iterations.tuning.multilevel_coarsening_ratio * static_cast<double>(n)));
-    Sphere_system coarse_system = make_connectivity(std::move(coarsening.coarse.triangles), coarsening.coarse.points.size());
+    const std::size_t n = m_system.number_of_vertices;
+    Coarsening coarsening = coarsen_mesh(
+        m_mesh.points, m_system.triangles,
+        static_cast<std::size_t>(m_options.iterations.tuning.multilevel_coarsening_ratio * static_cast<double>(n)));
+    Sphere_system coarse_system =
+        make_connectivity(std::move(coarsening.coarse.triangles), coarsening.coarse.points.size());
     std::string message;
-    if(assign_weights(coarse_system, coarsening.coarse, Weighting::UNIFORM, {}, message) != Error_code::OK) return false;
+    if(assign_weights(coarse_system, coarsening.coarse, Weighting::UNIFORM, {}, message) != Error_code::OK)
+      return false;
     const double coarsening_seconds = clock.time();
     std::vector<Vector3> coarse_x;
-    Pipeline_options coarse_options = options_;
+    Pipeline_options coarse_options = m_options;
     coarse_options.coarse_level = true;
-    const Result coarse = Sphere_mapper(coarsening.coarse, coarse_system, coarse_options, solver_).map(coarse_x);
-    if(coarse.status == Error_code::CANCELLED && coarse_x.size() == coarse_system.number_of_vertices) {
+    const Result coarse = Sphere_mapper(coarsening.coarse, coarse_system, coarse_options, m_solver).map(coarse_x);
+    if(coarse.status == Error_code::CANCELLED && coarse_x.size() == coarse_system.number_of_vertices)
+    {
       // Stopped on a coarser level: its map, carried back, is the best map there is for this one.
       prolong(coarsening, coarse_x, x);
-      cancelled_ = true;
-      result_.levels = coarse.levels;
+      m_cancelled = true;
+      m_result.levels = coarse.levels;
       return true;
     }
-    if(coarse.status != Error_code::OK) {
-      if(options_.verbose) std::cerr << "multilevel: the level of " << coarse_system.number_of_vertices << " vertices ended "
-                                    << get_error_message(coarse.status) << "; the two-disk guess on " << n << " vertices follows\n";
+    if(coarse.status != Error_code::OK)
+    {
+      if(m_options.verbose)
+        std::cerr << "multilevel: the level of " << coarse_system.number_of_vertices << " vertices ended "
+                  << get_error_message(coarse.status) << "; the two-disk guess on " << n << " vertices follows\n";
       return false;
     }
     clock.reset();
     const std::size_t folded = prolong(coarsening, coarse_x, x);
     const std::size_t rounds = coarsening.rounds;
     coarsening = Coarsening();
-    Iteration_options level_options = options_.iterations;
+    Iteration_options level_options = m_options.iterations;
     if(level_options.max_seconds >= 0.)
-      level_options.max_seconds = std::max(0., level_options.max_seconds - options_.call_clock.time());
-    Sphere_state state(system_, x);
-    result_.initial_flipped_faces = state.invalid_faces();
+      level_options.max_seconds = std::max(0., level_options.max_seconds - m_options.call_clock.time());
+    Sphere_state state(m_system, x);
+    m_result.initial_flipped_faces = state.invalid_faces();
     CGAL::Real_timer iterations_clock;
     iterations_clock.start();
     Iteration_options smoothing = level_options;
-    smoothing.max_gauss_seidel_sweeps = options_.iterations.tuning.multilevel_smoothing_sweeps;
+    smoothing.max_gauss_seidel_sweeps = m_options.iterations.tuning.multilevel_smoothing_sweeps;
     const Iteration_report smoothed = projected_gauss_seidel(state, smoothing, iterations_clock);
-    result_.gauss_seidel.iterations = smoothed.sweeps;
-    result_.gauss_seidel.residual = smoothed.residual;
-    result_.gauss_seidel.seconds = iterations_clock.time();
-    result_.initial_guess.residual = smoothed.residual;
+    m_result.gauss_seidel.iterations = smoothed.sweeps;
+    m_result.gauss_seidel.residual = smoothed.residual;
+    m_result.gauss_seidel.seconds = iterations_clock.time();
+    m_result.initial_guess.residual = smoothed.residual;
     // The map carried back is close to the solution: the boost equations are solved as equations (Boost_aim).
-    newton_ = full_newton_steps(state, level_options, iterations_clock, Boost_aim::ROOT);
-    cancelled_ = cancelled_ || newton_.cancelled;
-    multilevel_newton_seconds_ = iterations_clock.time();
-    result_.levels = coarse.levels;
-    if(result_.levels.empty()) {
+    m_newton = full_newton_steps(state, level_options, iterations_clock, Boost_aim::ROOT);
+    m_cancelled = m_cancelled || m_newton.cancelled;
+    m_multilevel_newton_seconds = iterations_clock.time();
+    m_result.levels = coarse.levels;
+    if(m_result.levels.empty())
+    {
       Level_statistics coarsest;
       coarsest.vertices = coarse.number_of_vertices;
       coarsest.newton_steps = coarse.newton.iterations;
       coarsest.linear_iterations = coarse.newton.linear_iterations;
       coarsest.seconds = coarse.total_seconds;
-      result_.levels.push_back(coarsest);
+      m_result.levels.push_back(coarsest);
     }
     Level_statistics level;
     level.vertices = n;
-    level.newton_steps = newton_.sweeps;
-    level.linear_iterations = newton_.linear_iterations;
+    level.newton_steps = m_newton.sweeps;
+    level.linear_iterations = m_newton.linear_iterations;
     level.seconds = coarsening_seconds + clock.time();
-    result_.levels.push_back(level);
-    if(options_.verbose)
+    m_result.levels.push_back(level);
+    if(m_options.verbose)
       std::cerr << "multilevel: " << n << " vertices from " << coarse.number_of_vertices << " (" << rounds
-                << " rounds of collapses, " << coarsening_seconds << " s; " << folded << " vertices inserted folded): "
-                << newton_.sweeps << " Newton steps, " << newton_.linear_iterations << " MINRES iterations, max imbalance "
-                << summarize_imbalance(system_, x, options_.iterations.tolerance).max << ", " << clock.time() << " s\n";
-    return newton_.converged || newton_.cancelled || newton_.out_of_time;
+                << " rounds of collapses, " << coarsening_seconds << " s; " << folded
+                << " vertices inserted folded): " << m_newton.sweeps << " Newton steps, " << m_newton.linear_iterations
+                << " MINRES iterations, max imbalance "
+                << summarize_imbalance(m_system, x, m_options.iterations.tolerance).max << ", " << clock.time()
+                << " s\n";
+    return m_newton.converged || m_newton.cancelled || m_newton.out_of_time;
   }
 
   // The paper's stage 1 (two disks, Moebius inversion, inverse stereographic projection) and the settings of the
@@ -239,74 +268,88 @@ private:
   {
     CGAL::Real_timer stage;
     stage.start();
-    const Two_disk_partition partition = split_into_two_disks(system_, options_.metis_seed, options_.metis_options);
-    if(!partition.valid) {
-      result_.status = Error_code::PARTITION_FAILED;
-      result_.message = get_error_message(result_.status);
+    const Two_disk_partition partition = split_into_two_disks(m_system, m_options.metis_seed, m_options.metis_options);
+    if(!partition.valid)
+    {
+      m_result.status = Error_code::PARTITION_FAILED;
+      m_result.message = get_error_message(m_result.status);
       return false;
     }
-    result_.separator_size = partition.separator_size;
-    result_.cut_loop_length = partition.loop.size();
+    m_result.separator_size = partition.separator_size;
+    m_result.cut_loop_length = partition.loop.size();
     // Stage 1's iterations count the pairs of disks embedded: one, or more when a solver or the weights fell back.
-    result_.initial_guess.iterations = 1;
-    bool embedded = initial_sphere(mesh_, system_, partition, options_.weighting, solver_, x, options_.parallel);
-    if(!embedded) {
-      ++result_.initial_guess.iterations;
+    m_result.initial_guess.iterations = 1;
+    bool embedded = initial_sphere(m_mesh, m_system, partition, m_options.weighting, m_solver, x, m_options.parallel);
+    if(!embedded)
+    {
+      ++m_result.initial_guess.iterations;
       // An iterative solver can give up where a direct one does not: try Eigen's sparse LU before failing.
-      embedded = initial_sphere(mesh_, system_, partition, options_.weighting, Sparse_LU_solver_traits(), x, options_.parallel);
-      if(options_.verbose && embedded) std::cerr << "stage 1: the disk solver failed; Eigen's sparse LU was used\n";
+      embedded = initial_sphere(m_mesh, m_system, partition, m_options.weighting, Sparse_LU_solver_traits(), x,
+                                m_options.parallel);
+      if(m_options.verbose && embedded)
+        std::cerr << "stage 1: the disk solver failed; Eigen's sparse LU was used\n";
     }
-    Sphere_certificate start = embedded ? certify(system_.triangles, x) : Sphere_certificate();
-    if(options_.weighting != Weighting::UNIFORM && (!embedded || start.flipped_faces > 0)) {
+    Sphere_certificate start = embedded ? certify(m_system.triangles, x) : Sphere_certificate();
+    if(m_options.weighting != Weighting::UNIFORM && (!embedded || start.flipped_faces > 0))
+    {
       // Weights that may be negative or non-symmetric can fold the disks: Tutte's disks cannot.
       std::vector<Vector3> uniform_start;
-      ++result_.initial_guess.iterations;
-      if(initial_sphere(mesh_, system_, partition, Weighting::UNIFORM, solver_, uniform_start, options_.parallel)) {
-        const Sphere_certificate uniform_certificate = certify(system_.triangles, uniform_start);
-        if(!embedded || uniform_certificate.flipped_faces < start.flipped_faces) {
+      ++m_result.initial_guess.iterations;
+      if(initial_sphere(m_mesh, m_system, partition, Weighting::UNIFORM, m_solver, uniform_start, m_options.parallel))
+      {
+        const Sphere_certificate uniform_certificate = certify(m_system.triangles, uniform_start);
+        if(!embedded || uniform_certificate.flipped_faces < start.flipped_faces)
+        {
           x.swap(uniform_start);
           start = uniform_certificate;
           embedded = true;
-          result_.uniform_initial_guess_fallback = true;
+          m_result.uniform_initial_guess_fallback = true;
         }
       }
     }
-    if(!embedded) {
-      result_.status = Error_code::DISK_EMBEDDING_FAILED;
-      result_.message = get_error_message(result_.status);
+    if(!embedded)
+    {
+      m_result.status = Error_code::DISK_EMBEDDING_FAILED;
+      m_result.message = get_error_message(m_result.status);
       return false;
     }
-    result_.initial_flipped_faces = start.flipped_faces;
-    result_.initial_guess.residual = compute_residuals(system_, x).paper;
-    const double initial_imbalance = summarize_imbalance(system_, x, options_.iterations.tolerance).max;
-    result_.initial_guess.seconds = stage.time();
-    if(options_.verbose)
-      std::cerr << "stage 1: separator " << result_.separator_size << " vertices, loop " << result_.cut_loop_length
-                << " vertices, Res " << result_.initial_guess.residual << ", non-positive faces " << start.flipped_faces
-                << ", max imbalance " << initial_imbalance << ", " << result_.initial_guess.seconds << " s\n";
-    if(options_.report) {
+    m_result.initial_flipped_faces = start.flipped_faces;
+    m_result.initial_guess.residual = compute_residuals(m_system, x).paper;
+    const double initial_imbalance = summarize_imbalance(m_system, x, m_options.iterations.tolerance).max;
+    m_result.initial_guess.seconds = stage.time();
+    if(m_options.verbose)
+      std::cerr << "stage 1: separator " << m_result.separator_size << " vertices, loop " << m_result.cut_loop_length
+                << " vertices, Res " << m_result.initial_guess.residual << ", non-positive faces "
+                << start.flipped_faces << ", max imbalance " << initial_imbalance << ", "
+                << m_result.initial_guess.seconds << " s\n";
+    if(m_options.report)
+    {
       Progress progress;
       progress.stage = "initial guess";
-      progress.residual = result_.initial_guess.residual;
+      progress.residual = m_result.initial_guess.residual;
       progress.max_imbalance = initial_imbalance;
       progress.non_positive_faces = start.flipped_faces;
-      progress.seconds = total_.time();
-      cancelled_ = !options_.report(progress);
+      progress.seconds = m_total.time();
+      m_cancelled = !m_options.report(progress);
     }
 
     // A non-inscribable connectivity has no bijective balanced solution for positive weights: iterating cannot
     // succeed, so the initial guess (bijective by construction in all but rare cases) is the answer; a few
     // bijectivity-preserving iterations only serve to repair it if some of its triangles are not positive.
     bool positive_weights = true;
-    for(double w : system_.weights) positive_weights = positive_weights && w > 0.;
-    inscribability_ = check_inscribability(system_);
-    no_balanced_solution_ = positive_weights && inscribability_.proven_not_inscribable;
+    for(double w : m_system.weights)
+      positive_weights = positive_weights && w > 0.;
+    m_inscribability = check_inscribability(m_system);
+    m_no_balanced_solution = positive_weights && m_inscribability.proven_not_inscribable;
     // Non-symmetric weights (mean value) have no exact solution in general: with the imbalance test their iterations
     // stop on the stationarity of the least-squares problem instead (summarize_stationarity).
-    if(no_balanced_solution_) {
-      iteration_options_.max_gauss_seidel_sweeps = start.flipped_faces == 0 ? 0 : std::min<std::size_t>(iteration_options_.max_gauss_seidel_sweeps, 100);
-      iteration_options_.max_newton_sweeps = start.flipped_faces == 0 ? 0 : std::min<std::size_t>(iteration_options_.max_newton_sweeps, 100);
-      iteration_options_.tolerance = 0.;  // stop at the caps; no residual is the goal here
+    if(m_no_balanced_solution)
+    {
+      m_iteration_options.max_gauss_seidel_sweeps =
+          start.flipped_faces == 0 ? 0 : std::min<std::size_t>(m_iteration_options.max_gauss_seidel_sweeps, 100);
+      m_iteration_options.max_newton_sweeps =
+          start.flipped_faces == 0 ? 0 : std::min<std::size_t>(m_iteration_options.max_newton_sweeps, 100);
+      m_iteration_options.tolerance = 0.; // stop at the caps; no residual is the goal here
     }
 
     return true;
@@ -319,10 +362,10 @@ private:
     stage.start();
     // Stages 2 and 3, with what is left of the time budget: it bounds the whole call, and stage 1 (which every
     // returned map needs) runs to its end even when it alone takes longer.
-    if(iteration_options_.max_seconds >= 0.)
-      iteration_options_.max_seconds = std::max(0., iteration_options_.max_seconds - options_.call_clock.time());
+    if(m_iteration_options.max_seconds >= 0.)
+      m_iteration_options.max_seconds = std::max(0., m_iteration_options.max_seconds - m_options.call_clock.time());
     const std::vector<Vector3> initial_guess = x;
-    Sphere_state state(system_, x);
+    Sphere_state state(m_system, x);
     CGAL::Real_timer iterations_clock;
     iterations_clock.start();
     // The default solver first tries Newton's full steps (through folds, keeping degree 1) from the initial guess:
@@ -333,130 +376,154 @@ private:
     Iteration_report direct_newton;
     CGAL::Real_timer direct_clock;
     direct_clock.start();
-    const bool try_direct_newton = !cancelled_ && !no_balanced_solution_ &&
-                                   options_.nonlinear_solver == Nonlinear_solver::GLOBAL_NEWTON && iteration_options_.max_newton_sweeps > 0 &&
-                                   (system_.symmetric || iteration_options_.convergence_test == Convergence_test::IMBALANCE);
-    if(try_direct_newton) {
-      direct_newton = system_.symmetric ? full_newton_steps(state, iteration_options_, iterations_clock)
-                                        : least_squares_newton(state, iteration_options_, iterations_clock);
-      if(options_.coarse_level && !direct_newton.converged) {
-        iteration_options_.max_gauss_seidel_sweeps = 0;
-        iteration_options_.max_newton_sweeps = 0;
+    const bool try_direct_newton =
+        !m_cancelled && !m_no_balanced_solution && m_options.nonlinear_solver == Nonlinear_solver::GLOBAL_NEWTON
+        && m_iteration_options.max_newton_sweeps > 0
+        && (m_system.symmetric || m_iteration_options.convergence_test == Convergence_test::IMBALANCE);
+    if(try_direct_newton)
+    {
+      direct_newton = m_system.symmetric ? full_newton_steps(state, m_iteration_options, iterations_clock)
+                                         : least_squares_newton(state, m_iteration_options, iterations_clock);
+      if(m_options.coarse_level && !direct_newton.converged)
+      {
+        m_iteration_options.max_gauss_seidel_sweeps = 0;
+        m_iteration_options.max_newton_sweeps = 0;
       }
-      cancelled_ = direct_newton.cancelled;
-      if(!direct_newton.converged && !cancelled_ && !direct_newton.out_of_time) state.assign(initial_guess);
-      if(iteration_options_.max_newton_sweeps > direct_newton.sweeps) iteration_options_.max_newton_sweeps -= direct_newton.sweeps;
-      else iteration_options_.max_newton_sweeps = 0;
+      m_cancelled = direct_newton.cancelled;
+      if(!direct_newton.converged && !m_cancelled && !direct_newton.out_of_time)
+        state.assign(initial_guess);
+      if(m_iteration_options.max_newton_sweeps > direct_newton.sweeps)
+        m_iteration_options.max_newton_sweeps -= direct_newton.sweeps;
+      else
+        m_iteration_options.max_newton_sweeps = 0;
     }
     const double direct_seconds = direct_clock.time();
     const bool direct_done = direct_newton.converged || direct_newton.out_of_time;
 
     stage.reset();
     Iteration_report gauss_seidel;
-    if(!cancelled_ && !direct_done) gauss_seidel = projected_gauss_seidel(state, iteration_options_, iterations_clock);
-    else gauss_seidel.residual = direct_newton.converged ? direct_newton.residual : result_.initial_guess.residual;
-    cancelled_ = cancelled_ || gauss_seidel.cancelled;
-    result_.gauss_seidel.iterations = gauss_seidel.sweeps;
-    result_.gauss_seidel.residual = gauss_seidel.residual;
-    result_.gauss_seidel.seconds = stage.time();
-    if(options_.verbose)
-      std::cerr << "stage 2: " << gauss_seidel.sweeps << " sweeps, Res " << gauss_seidel.residual << ", non-positive faces "
-                << state.invalid_faces() << ", " << result_.gauss_seidel.seconds << " s\n";
+    if(!m_cancelled && !direct_done)
+      gauss_seidel = projected_gauss_seidel(state, m_iteration_options, iterations_clock);
+    else
+      gauss_seidel.residual = direct_newton.converged ? direct_newton.residual : m_result.initial_guess.residual;
+    m_cancelled = m_cancelled || gauss_seidel.cancelled;
+    m_result.gauss_seidel.iterations = gauss_seidel.sweeps;
+    m_result.gauss_seidel.residual = gauss_seidel.residual;
+    m_result.gauss_seidel.seconds = stage.time();
+    if(m_options.verbose)
+      std::cerr << "stage 2: " << gauss_seidel.sweeps << " sweeps, Res " << gauss_seidel.residual
+                << ", non-positive faces " << state.invalid_faces() << ", " << m_result.gauss_seidel.seconds << " s\n";
 
     stage.reset();
-    if(!direct_done && !gauss_seidel.converged && !gauss_seidel.out_of_time && !cancelled_ && iteration_options_.max_newton_sweeps > 0)
-      newton_ = options_.nonlinear_solver == Nonlinear_solver::LOCAL_NEWTON
-                   ? local_newton(state, iteration_options_, iterations_clock)
-                   : global_newton(state, iteration_options_, iterations_clock, &initial_guess);
-    else newton_.residual = gauss_seidel.residual;
-    cancelled_ = cancelled_ || newton_.cancelled;
-    result_.newton.iterations = newton_.sweeps + direct_newton.sweeps;
-    result_.newton.linear_iterations = newton_.linear_iterations + direct_newton.linear_iterations;
-    result_.newton.residual = direct_done ? direct_newton.residual : newton_.residual;
-    result_.newton.seconds = stage.time() + direct_seconds;
-    result_.rejected_moves = gauss_seidel.rejected_moves + newton_.rejected_moves;
-    result_.continuation_parameter = newton_.continuation_parameter;
-    if(options_.verbose)
-      std::cerr << "stage 3: " << newton_.sweeps << " sweeps, Res " << newton_.residual << ", non-positive faces "
-                << state.invalid_faces() << ", " << result_.newton.seconds << " s\n";
+    if(!direct_done && !gauss_seidel.converged && !gauss_seidel.out_of_time && !m_cancelled
+       && m_iteration_options.max_newton_sweeps > 0)
+      m_newton = m_options.nonlinear_solver == Nonlinear_solver::LOCAL_NEWTON
+                     ? local_newton(state, m_iteration_options, iterations_clock)
+                     : global_newton(state, m_iteration_options, iterations_clock, &initial_guess);
+    else
+      m_newton.residual = gauss_seidel.residual;
+    m_cancelled = m_cancelled || m_newton.cancelled;
+    m_result.newton.iterations = m_newton.sweeps + direct_newton.sweeps;
+    m_result.newton.linear_iterations = m_newton.linear_iterations + direct_newton.linear_iterations;
+    m_result.newton.residual = direct_done ? direct_newton.residual : m_newton.residual;
+    m_result.newton.seconds = stage.time() + direct_seconds;
+    m_result.rejected_moves = gauss_seidel.rejected_moves + m_newton.rejected_moves;
+    m_result.continuation_parameter = m_newton.continuation_parameter;
+    if(m_options.verbose)
+      std::cerr << "stage 3: " << m_newton.sweeps << " sweeps, Res " << m_newton.residual << ", non-positive faces "
+                << state.invalid_faces() << ", " << m_result.newton.seconds << " s\n";
   }
 
   // The certificate and the figures, recomputed from scratch on the final positions, the status and its message.
   void certify_and_report(const std::vector<Vector3>& x)
   {
     // Certificate and figures, recomputed from scratch on the final positions.
-    const Residuals residuals = compute_residuals(system_, x);
-    const Sphere_certificate certificate = certify(system_.triangles, x);
-    result_.residual = residuals.paper;
-    result_.max_tangential_residual = residuals.max_tangential;
-    result_.flipped_faces = certificate.flipped_faces;
-    result_.total_signed_area = certificate.total_signed_area;
-    result_.bijective = certificate.bijective;
+    const Residuals residuals = compute_residuals(m_system, x);
+    const Sphere_certificate certificate = certify(m_system.triangles, x);
+    m_result.residual = residuals.paper;
+    m_result.max_tangential_residual = residuals.max_tangential;
+    m_result.flipped_faces = certificate.flipped_faces;
+    m_result.total_signed_area = certificate.total_signed_area;
+    m_result.bijective = certificate.bijective;
     std::vector<double> imbalances;
-    const Imbalance_summary imbalance = summarize_imbalance(system_, x, options_.iterations.tolerance, &imbalances);
-    result_.max_imbalance = imbalance.max;
-    result_.imbalance_percentile_99 = imbalance.percentile_99;
-    result_.vertices_at_rounding_floor = imbalance.vertices_at_rounding_floor;
-    result_.unbalanced_vertices = imbalance.unbalanced_vertices;
-    result_.convergence_test = iteration_options_.convergence_test;
+    const Imbalance_summary imbalance = summarize_imbalance(m_system, x, m_options.iterations.tolerance, &imbalances);
+    m_result.max_imbalance = imbalance.max;
+    m_result.imbalance_percentile_99 = imbalance.percentile_99;
+    m_result.vertices_at_rounding_floor = imbalance.vertices_at_rounding_floor;
+    m_result.unbalanced_vertices = imbalance.unbalanced_vertices;
+    m_result.convergence_test = m_iteration_options.convergence_test;
     Imbalance_summary stationarity;
-    if(!system_.symmetric) {
-      stationarity = summarize_stationarity(system_, x, options_.iterations.tolerance);
-      result_.max_stationarity = stationarity.max;
-      result_.unstationary_vertices = stationarity.unbalanced_vertices;
+    if(!m_system.symmetric)
+    {
+      stationarity = summarize_stationarity(m_system, x, m_options.iterations.tolerance);
+      m_result.max_stationarity = stationarity.max;
+      m_result.unstationary_vertices = stationarity.unbalanced_vertices;
     }
-    const bool converged = iteration_options_.convergence_test == Convergence_test::PAPER_RESIDUAL
-                               ? result_.residual < options_.iterations.tolerance
-                               : (system_.symmetric ? imbalance : stationarity).balanced();
-    result_.status = !converged ? Error_code::NOT_CONVERGED : (certificate.bijective ? Error_code::OK : Error_code::NOT_BIJECTIVE);
-    if(cancelled_) result_.status = Error_code::CANCELLED;
-    if(no_balanced_solution_) result_.status = Error_code::NO_BALANCED_SOLUTION;
-    result_.message = get_error_message(result_.status);
-    if(!system_.symmetric && iteration_options_.convergence_test == Convergence_test::IMBALANCE) {
+    const bool converged = m_iteration_options.convergence_test == Convergence_test::PAPER_RESIDUAL
+                               ? m_result.residual < m_options.iterations.tolerance
+                               : (m_system.symmetric ? imbalance : stationarity).balanced();
+    m_result.status =
+        !converged ? Error_code::NOT_CONVERGED : (certificate.bijective ? Error_code::OK : Error_code::NOT_BIJECTIVE);
+    if(m_cancelled)
+      m_result.status = Error_code::CANCELLED;
+    if(m_no_balanced_solution)
+      m_result.status = Error_code::NO_BALANCED_SOLUTION;
+    m_result.message = get_error_message(m_result.status);
+    if(!m_system.symmetric && m_iteration_options.convergence_test == Convergence_test::IMBALANCE)
+    {
       std::ostringstream note;
       note << " [non-symmetric weights: the test is the stationarity of their least-squares problem, max "
-           << result_.max_stationarity << "; their imbalance cannot reach the tolerance]";
-      result_.message += note.str();
+           << m_result.max_stationarity << "; their imbalance cannot reach the tolerance]";
+      m_result.message += note.str();
     }
-    if(no_balanced_solution_) {
+    if(m_no_balanced_solution)
+    {
       std::ostringstream details;
-      details << " (proof: " << inscribability_.independent_set_size << " of the " << system_.number_of_vertices
-              << " vertices are pairwise non-adjacent" << (2 * inscribability_.independent_set_size == system_.number_of_vertices
-                                                               ? " and two of the others are adjacent" : "")
+      details << " (proof: " << m_inscribability.independent_set_size << " of the " << m_system.number_of_vertices
+              << " vertices are pairwise non-adjacent"
+              << (2 * m_inscribability.independent_set_size == m_system.number_of_vertices
+                      ? " and two of the others are adjacent"
+                      : "")
               << "). The map returned is the initial guess (two Tutte disks, "
-              << "Moebius inversion, stereographic projection)" << (certificate.bijective ? ", certified bijective" : ", NOT bijective: "
-              + std::to_string(certificate.flipped_faces) + " flipped faces") << ", not a balanced one";
-      result_.message += details.str();
-    } else if(result_.status != Error_code::OK) {
+              << "Moebius inversion, stereographic projection)"
+              << (certificate.bijective
+                      ? ", certified bijective"
+                      : ", NOT bijective: " + std::to_string(certificate.flipped_faces) + " flipped faces")
+              << ", not a balanced one";
+      m_result.message += details.str();
+    }
+    else if(m_result.status != Error_code::OK)
+    {
       std::ostringstream details;
-      details << " (max imbalance " << result_.max_imbalance << ", " << result_.unbalanced_vertices
-              << " vertices above the tolerance, Res " << result_.residual << ", " << result_.flipped_faces << " flipped faces";
-      if(result_.continuation_parameter >= 0. && result_.continuation_parameter < 1.)
+      details << " (max imbalance " << m_result.max_imbalance << ", " << m_result.unbalanced_vertices
+              << " vertices above the tolerance, Res " << m_result.residual << ", " << m_result.flipped_faces
+              << " flipped faces";
+      if(m_result.continuation_parameter >= 0. && m_result.continuation_parameter < 1.)
         details << "; the balanced maps from Tutte's weights towards these could be followed only "
-                << static_cast<int>(100. * result_.continuation_parameter) << "% of the way";
-      if(!system_.symmetric)
+                << static_cast<int>(100. * m_result.continuation_parameter) << "% of the way";
+      if(!m_system.symmetric)
         details << "; with non-symmetric weights the balance equations generally have no exact solution";
-      else if(newton_.stagnated)
+      else if(m_newton.stagnated)
         details << "; the residual stagnated";
-      if(!options_.admissible_weights && (!system_.symmetric || result_.continuation_parameter >= 0.))
+      if(!m_options.admissible_weights && (!m_system.symmetric || m_result.continuation_parameter >= 0.))
         details << "; the admissible_weights named parameter may help";
       details << ")";
-      result_.message += details.str();
+      m_result.message += details.str();
     }
   }
 
-  const Mesh_arrays& mesh_;
-  Sphere_system& system_;
-  const Pipeline_options& options_;
-  const SolverTraits& solver_;
-  Result result_;
-  CGAL::Real_timer total_;
-  Iteration_options iteration_options_;   // options_.iterations as this mesh's stages run them
-  bool cancelled_ = false;
-  bool no_balanced_solution_ = false;     // proven: no bijective balanced map exists (inscribability_)
-  Inscribability_check inscribability_;
-  Iteration_report newton_;
-  double multilevel_newton_seconds_ = 0.;
+  const Mesh_arrays& m_mesh;
+  Sphere_system& m_system;
+  const Pipeline_options& m_options;
+  const SolverTraits& m_solver;
+  Result m_result;
+  CGAL::Real_timer m_total;
+  Iteration_options m_iteration_options; // m_options.iterations as this mesh's stages run them
+  bool m_cancelled = false;
+  bool m_no_balanced_solution = false; // proven: no bijective balanced map exists (m_inscribability)
+  Inscribability_check m_inscribability;
+  Iteration_report m_newton;
+  double m_multilevel_newton_seconds = 0.;
 };
 
 } // namespace internal

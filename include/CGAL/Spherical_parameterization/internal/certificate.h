@@ -27,9 +27,9 @@ namespace internal {
 // The sum of the absolute values of the six products in a . (b x c): the scale of its rounding error.
 inline double determinant_permanent(const Vector3& a, const Vector3& b, const Vector3& c)
 {
-  return std::abs(a.x) * (std::abs(b.y * c.z) + std::abs(b.z * c.y)) +
-         std::abs(a.y) * (std::abs(b.z * c.x) + std::abs(b.x * c.z)) +
-         std::abs(a.z) * (std::abs(b.x * c.y) + std::abs(b.y * c.x));
+  return std::abs(a.x) * (std::abs(b.y * c.z) + std::abs(b.z * c.y))
+         + std::abs(a.y) * (std::abs(b.z * c.x) + std::abs(b.x * c.z))
+         + std::abs(a.z) * (std::abs(b.x * c.y) + std::abs(b.y * c.x));
 }
 
 // True when the spherical triangle (a, b, c) is positively oriented: orientation(ORIGIN, a, b, c) is POSITIVE,
@@ -42,12 +42,15 @@ inline bool is_positive(const Vector3& a, const Vector3& b, const Vector3& c)
   const double bc_x = b.y * c.z - b.z * c.y, bc_y = b.z * c.x - b.x * c.z, bc_z = b.x * c.y - b.y * c.x;
   const double det = a.x * bc_x + a.y * bc_y + a.z * bc_z;
   const double permanent = determinant_permanent(a, b, c);
-  const double bound = 7.7715611723761027e-16 * permanent;  // (7 + 56 eps) eps, eps = 2^-53
-  if(det > bound) return true;
-  if(det < -bound) return false;
+  const double bound = 7.7715611723761027e-16 * permanent; // (7 + 56 eps) eps, eps = 2^-53
+  if(det > bound)
+    return true;
+  if(det < -bound)
+    return false;
   // A non-finite coordinate makes the permanent non-finite: never positive (the exact arithmetic cannot take it,
   // and a backtracked move pulled through the centre of the sphere yields one).
-  if(!std::isfinite(permanent)) return false;
+  if(!std::isfinite(permanent))
+    return false;
   using P = CGAL::Epick::Point_3;
   return CGAL::orientation(P(CGAL::ORIGIN), P(a.x, a.y, a.z), P(b.x, b.y, b.z), P(c.x, c.y, c.z)) == CGAL::POSITIVE;
 }
@@ -63,20 +66,23 @@ inline double signed_spherical_area(const Vector3& a, const Vector3& b, const Ve
   double numerator = determinant(a, b, c);
   double denominator = 1. + dot(a, b) + dot(b, c) + dot(c, a);
   const double numerator_scale = determinant_permanent(a, b, c);
-  const double denominator_scale = 1. + std::abs(a.x * b.x) + std::abs(a.y * b.y) + std::abs(a.z * b.z) +
-                                   std::abs(b.x * c.x) + std::abs(b.y * c.y) + std::abs(b.z * c.z) +
-                                   std::abs(c.x * a.x) + std::abs(c.y * a.y) + std::abs(c.z * a.z);
+  const double denominator_scale = 1. + std::abs(a.x * b.x) + std::abs(a.y * b.y) + std::abs(a.z * b.z)
+                                   + std::abs(b.x * c.x) + std::abs(b.y * c.y) + std::abs(b.z * c.z)
+                                   + std::abs(c.x * a.x) + std::abs(c.y * a.y) + std::abs(c.z * a.z);
   // The angle atan2(numerator, denominator) is off by about (rounding error of the arguments) / |(numerator,
   // denominator)|: about 1e-15 on a small or ordinary triangle (the denominator is near 4), ill-conditioned only
   // when both arguments are near 0. Below 1e-8 of accuracy per triangle, they are evaluated exactly (rarely).
   const double rounding = 8e-16 * (numerator_scale + denominator_scale);
-  if(std::isfinite(rounding) && std::abs(numerator) + std::abs(denominator) < 1e8 * rounding) {
+  if(std::isfinite(rounding) && std::abs(numerator) + std::abs(denominator) < 1e8 * rounding)
+  {
     using Q = CGAL::Exact_rational;
     const Q ax(a.x), ay(a.y), az(a.z), bx(b.x), by(b.y), bz(b.z), cx(c.x), cy(c.y), cz(c.z);
     numerator = CGAL::to_double(ax * (by * cz - bz * cy) + ay * (bz * cx - bx * cz) + az * (bx * cy - by * cx));
-    denominator = CGAL::to_double(Q(1) + ax * bx + ay * by + az * bz + bx * cx + by * cy + bz * cz + cx * ax + cy * ay + cz * az);
+    denominator =
+        CGAL::to_double(Q(1) + ax * bx + ay * by + az * bz + bx * cx + by * cy + bz * cz + cx * ax + cy * ay + cz * az);
   }
-  if(positive) numerator = std::abs(numerator);
+  if(positive)
+    numerator = std::abs(numerator);
   return 2. * std::atan2(numerator, denominator);
 }
 
@@ -93,31 +99,43 @@ inline long covering_number(const std::vector<std::array<int, 3>>& triangles, co
                           P(-0.6180339887498949, 0.2718281828459045, -0.4142135623730950),
                           P(0.1234567890123456, -0.8765432109876543, 0.3456789012345678),
                           P(-0.2236067977499790, -0.1732050807568877, -0.9486832980505138)};
-  for(const P& p : candidates) {
+  for(const P& p : candidates)
+  {
     long count = 0;
     bool on_boundary = false;
-    for(const auto& t : triangles) {
+    for(const auto& t : triangles)
+    {
       const Vector3& a = x[static_cast<std::size_t>(t[0])];
       const Vector3& b = x[static_cast<std::size_t>(t[1])];
       const Vector3& c = x[static_cast<std::size_t>(t[2])];
-      if(!is_finite(a) || !is_finite(b) || !is_finite(c)) continue;
+      if(!is_finite(a) || !is_finite(b) || !is_finite(c))
+        continue;
       const P pa(a.x, a.y, a.z), pb(b.x, b.y, b.z), pc(c.x, c.y, c.z);
       const CGAL::Orientation o1 = CGAL::orientation(origin, pa, pb, p);
-      if(o1 == CGAL::NEGATIVE) continue;
+      if(o1 == CGAL::NEGATIVE)
+        continue;
       const CGAL::Orientation o2 = CGAL::orientation(origin, pb, pc, p);
-      if(o2 == CGAL::NEGATIVE) continue;
+      if(o2 == CGAL::NEGATIVE)
+        continue;
       const CGAL::Orientation o3 = CGAL::orientation(origin, pc, pa, p);
-      if(o3 == CGAL::NEGATIVE) continue;
-      if(o1 == CGAL::ZERO || o2 == CGAL::ZERO || o3 == CGAL::ZERO) { on_boundary = true; break; }
+      if(o3 == CGAL::NEGATIVE)
+        continue;
+      if(o1 == CGAL::ZERO || o2 == CGAL::ZERO || o3 == CGAL::ZERO)
+      {
+        on_boundary = true;
+        break;
+      }
       ++count;
     }
-    if(!on_boundary) return count;
+    if(!on_boundary)
+      return count;
   }
   return -1;
 }
 
-struct Sphere_certificate {
-  std::size_t flipped_faces = 0;   // not POSITIVE under the exact predicate
+struct Sphere_certificate
+{
+  std::size_t flipped_faces = 0; // not POSITIVE under the exact predicate
   double total_signed_area = 0.;
   bool bijective = false;
 };
@@ -136,11 +154,18 @@ inline Sphere_certificate certify(const std::vector<std::array<int, 3>>& triangl
 {
   const std::vector<Vector3>& on_sphere = unit != nullptr ? *unit : x;
   Sphere_certificate certificate;
-  for(const auto& t : triangles) {
-    const std::size_t i = static_cast<std::size_t>(t[0]), j = static_cast<std::size_t>(t[1]), k = static_cast<std::size_t>(t[2]);
-    if(!is_finite(x[i]) || !is_finite(x[j]) || !is_finite(x[k])) { ++certificate.flipped_faces; continue; }
+  for(const auto& t : triangles)
+  {
+    const std::size_t i = static_cast<std::size_t>(t[0]), j = static_cast<std::size_t>(t[1]),
+                      k = static_cast<std::size_t>(t[2]);
+    if(!is_finite(x[i]) || !is_finite(x[j]) || !is_finite(x[k]))
+    {
+      ++certificate.flipped_faces;
+      continue;
+    }
     const bool positive = is_positive(x[i], x[j], x[k]);
-    if(!positive) ++certificate.flipped_faces;
+    if(!positive)
+      ++certificate.flipped_faces;
     certificate.total_signed_area += signed_spherical_area(on_sphere[i], on_sphere[j], on_sphere[k], positive);
   }
   certificate.bijective = certificate.flipped_faces == 0 && covering_number(triangles, x) == 1;

@@ -26,7 +26,8 @@ namespace Spherical_parameterization {
 namespace internal {
 
 // RAII: SIGINT, SIGTERM and SIGHUP are held back in this thread while the object lives.
-class Deferred_stop_signals {
+class Deferred_stop_signals
+{
 public:
   Deferred_stop_signals()
   {
@@ -36,13 +37,14 @@ public:
     sigaddset(&stop, SIGINT);
     sigaddset(&stop, SIGTERM);
     sigaddset(&stop, SIGHUP);
-    blocked_ = pthread_sigmask(SIG_BLOCK, &stop, &previous_) == 0;
+    m_blocked = pthread_sigmask(SIG_BLOCK, &stop, &m_previous) == 0;
 #endif
   }
   ~Deferred_stop_signals()
   {
 #ifdef CGAL_SPHERICAL_PARAMETERIZATION_HAS_SIGNAL_MASK
-    if(blocked_) pthread_sigmask(SIG_SETMASK, &previous_, nullptr);
+    if(m_blocked)
+      pthread_sigmask(SIG_SETMASK, &m_previous, nullptr);
 #endif
   }
   Deferred_stop_signals(const Deferred_stop_signals&) = delete;
@@ -50,8 +52,8 @@ public:
 
 private:
 #ifdef CGAL_SPHERICAL_PARAMETERIZATION_HAS_SIGNAL_MASK
-  sigset_t previous_;
-  bool blocked_ = false;
+  sigset_t m_previous;
+  bool m_blocked = false;
 #endif
 };
 

@@ -39,19 +39,22 @@ using Half_vertex = Half_mesh::Vertex_index;
 
 // A border parameterizer that places the border at prescribed points (indexed like the half's vertices),
 // so that both halves get exactly the same positions for the shared loop.
-class Prescribed_border_parameterizer {
+class Prescribed_border_parameterizer
+{
 public:
   using Point_2 = CGAL::Epick::Point_2;
   using halfedge_descriptor = boost::graph_traits<Half_mesh>::halfedge_descriptor;
 
-  explicit Prescribed_border_parameterizer(const std::vector<Point_2>* positions = nullptr) : positions_(positions) {}
+  explicit Prescribed_border_parameterizer(const std::vector<Point_2>* positions = nullptr) : m_positions(positions) {}
 
   template <typename VertexUVMap, typename VertexIndexMap, typename VertexParameterizedMap>
-  CGAL::Surface_mesh_parameterization::Error_code
-  parameterize(const Half_mesh& mesh, halfedge_descriptor bhd, VertexUVMap uvmap, VertexIndexMap, VertexParameterizedMap vpmap)
+  CGAL::Surface_mesh_parameterization::Error_code parameterize(const Half_mesh& mesh, halfedge_descriptor bhd,
+                                                               VertexUVMap uvmap, VertexIndexMap,
+                                                               VertexParameterizedMap vpmap)
   {
-    for(Half_vertex v : vertices_around_face(bhd, mesh)) {
-      put(uvmap, v, (*positions_)[static_cast<std::size_t>(v)]);
+    for(Half_vertex v : vertices_around_face(bhd, mesh))
+    {
+      put(uvmap, v, (*m_positions)[static_cast<std::size_t>(v)]);
       put(vpmap, v, true);
     }
     return CGAL::Surface_mesh_parameterization::OK;
@@ -60,41 +63,48 @@ public:
   bool is_border_convex() const { return true; }
 
 private:
-  const std::vector<Point_2>* positions_;
+  const std::vector<Point_2>* m_positions;
 };
 
 // The Fixed_border strategy for weights given as a table (the user's halfedge weight map): the disk stage then
 // uses exactly the weights of the sphere stage.
 template <typename SolverTraits>
 class Weight_table_parameterizer_3
-  : public CGAL::Surface_mesh_parameterization::Fixed_border_parameterizer_3<Half_mesh, Prescribed_border_parameterizer, SolverTraits> {
-  using Base = CGAL::Surface_mesh_parameterization::Fixed_border_parameterizer_3<Half_mesh, Prescribed_border_parameterizer, SolverTraits>;
+  : public CGAL::Surface_mesh_parameterization::Fixed_border_parameterizer_3<Half_mesh, Prescribed_border_parameterizer,
+                                                                             SolverTraits>
+{
+  using Base =
+      CGAL::Surface_mesh_parameterization::Fixed_border_parameterizer_3<Half_mesh, Prescribed_border_parameterizer,
+                                                                        SolverTraits>;
 
 public:
-  Weight_table_parameterizer_3(Prescribed_border_parameterizer border, SolverTraits solver,
-                               const Sphere_system* system, const std::vector<int>* global_index)
-    : Base(border, solver), system_(system), global_index_(global_index) {}
+  Weight_table_parameterizer_3(Prescribed_border_parameterizer border, SolverTraits solver, const Sphere_system* system,
+                               const std::vector<int>* global_index)
+    : Base(border, solver), m_system(system), m_global_index(global_index)
+  {}
 
 protected:
-  double compute_w_ij(const Half_mesh&, Half_vertex v_i, CGAL::Vertex_around_target_circulator<Half_mesh> v_j) const override
+  double compute_w_ij(const Half_mesh&, Half_vertex v_i,
+                      CGAL::Vertex_around_target_circulator<Half_mesh> v_j) const override
   {
-    const std::size_t i = static_cast<std::size_t>((*global_index_)[static_cast<std::size_t>(v_i)]);
-    const int j = (*global_index_)[static_cast<std::size_t>(*v_j)];
-    for(std::size_t k = system_->offsets[i]; k < system_->offsets[i + 1]; ++k)
-      if(system_->neighbors[k] == j) return system_->weights[k];
+    const std::size_t i = static_cast<std::size_t>((*m_global_index)[static_cast<std::size_t>(v_i)]);
+    const int j = (*m_global_index)[static_cast<std::size_t>(*v_j)];
+    for(std::size_t k = m_system->offsets[i]; k < m_system->offsets[i + 1]; ++k)
+      if(m_system->neighbors[k] == j)
+        return m_system->weights[k];
     return 0.;
   }
 
 private:
-  const Sphere_system* system_;
-  const std::vector<int>* global_index_;
+  const Sphere_system* m_system;
+  const std::vector<int>* m_global_index;
 };
 
 // Embeds the faces with face_in_disk_a == side in the unit disk; writes uv of their vertices.
 template <typename SolverTraits>
 bool embed_one_disk(const Mesh_arrays& mesh, const Sphere_system& system, const Two_disk_partition& partition,
-                    char side, Weighting weighting, const SolverTraits& solver,
-                    std::vector<double>& u, std::vector<double>& v)
+                    char side, Weighting weighting, const SolverTraits& solver, std::vector<double>& u,
+                    std::vector<double>& v)
 {
   namespace SMP = CGAL::Surface_mesh_parameterization;
   using Point_2 = CGAL::Epick::Point_2;
@@ -103,26 +113,33 @@ bool embed_one_disk(const Mesh_arrays& mesh, const Sphere_system& system, const 
   std::vector<int> local(nv, -1), global_index;
   std::size_t number_of_faces = 0;
   for(std::size_t f = 0; f < system.triangles.size(); ++f)
-    if(partition.face_in_disk_a[f] == side) {
+    if(partition.face_in_disk_a[f] == side)
+    {
       ++number_of_faces;
-      for(int g : system.triangles[f]) local[static_cast<std::size_t>(g)] = 0;
+      for(int g : system.triangles[f])
+        local[static_cast<std::size_t>(g)] = 0;
     }
   std::size_t number_of_vertices = 0;
-  for(int l : local) number_of_vertices += (l == 0);
+  for(int l : local)
+    number_of_vertices += (l == 0);
   Half_mesh half;
   // A disk has V + F - 1 edges: reserving them spares the mesh its reallocations.
-  half.reserve(static_cast<Half_mesh::size_type>(number_of_vertices), static_cast<Half_mesh::size_type>(number_of_vertices + number_of_faces),
+  half.reserve(static_cast<Half_mesh::size_type>(number_of_vertices),
+               static_cast<Half_mesh::size_type>(number_of_vertices + number_of_faces),
                static_cast<Half_mesh::size_type>(number_of_faces));
   global_index.reserve(number_of_vertices);
   for(std::size_t g = 0; g < nv; ++g)
-    if(local[g] == 0) {
+    if(local[g] == 0)
+    {
       local[g] = static_cast<int>(global_index.size());
       global_index.push_back(static_cast<int>(g));
       const Vector3& p = mesh.points[g];
       half.add_vertex(CGAL::Epick::Point_3(p.x, p.y, p.z));
     }
-  for(std::size_t f = 0; f < system.triangles.size(); ++f) {
-    if(partition.face_in_disk_a[f] != side) continue;
+  for(std::size_t f = 0; f < system.triangles.size(); ++f)
+  {
+    if(partition.face_in_disk_a[f] != side)
+      continue;
     const auto& t = system.triangles[f];
     if(half.add_face(Half_vertex(static_cast<Half_mesh::size_type>(local[static_cast<std::size_t>(t[0])])),
                      Half_vertex(static_cast<Half_mesh::size_type>(local[static_cast<std::size_t>(t[1])])),
@@ -135,14 +152,22 @@ bool embed_one_disk(const Mesh_arrays& mesh, const Sphere_system& system, const 
   std::vector<Point_2> border(global_index.size(), Point_2(0, 0));
   const double two_pi = 2. * CGAL_PI;
   const std::size_t m = partition.loop.size();
-  for(std::size_t k = 0; k < m; ++k) {
+  for(std::size_t k = 0; k < m; ++k)
+  {
     const double angle = two_pi * static_cast<double>(k) / static_cast<double>(m);
-    border[static_cast<std::size_t>(local[static_cast<std::size_t>(partition.loop[k])])] = Point_2(std::cos(angle), std::sin(angle));
+    border[static_cast<std::size_t>(local[static_cast<std::size_t>(partition.loop[k])])] =
+        Point_2(std::cos(angle), std::sin(angle));
   }
 
   boost::graph_traits<Half_mesh>::halfedge_descriptor bhd = boost::graph_traits<Half_mesh>::null_halfedge();
-  for(auto h : halfedges(half)) if(is_border(h, half)) { bhd = h; break; }
-  if(bhd == boost::graph_traits<Half_mesh>::null_halfedge()) return false;
+  for(auto h : halfedges(half))
+    if(is_border(h, half))
+    {
+      bhd = h;
+      break;
+    }
+  if(bhd == boost::graph_traits<Half_mesh>::null_halfedge())
+    return false;
 
   auto uvmap = half.add_property_map<Half_vertex, Point_2>("v:uv", Point_2(0, 0)).first;
   auto vpmap = half.add_property_map<Half_vertex, bool>("v:parameterized", false).first;
@@ -152,33 +177,45 @@ bool embed_one_disk(const Mesh_arrays& mesh, const Sphere_system& system, const 
   SMP::Error_code status = SMP::ERROR_EMPTY_MESH;
   // Degenerate corners (clamped in the sphere system) would make CGAL's own cotangent and mean-value weights
   // divide by zero, or fail its assertions: the disks then take the clamped weights of the sphere stage.
-  const Weighting disk_weighting = weighting != Weighting::UNIFORM && system.clamped_weights > 0 ? Weighting::USER_MAP : weighting;
-  switch(disk_weighting) {
-    case Weighting::UNIFORM: {
-      SMP::Barycentric_mapping_parameterizer_3<Half_mesh, Prescribed_border_parameterizer, SolverTraits> p(border_parameterizer, solver);
-      status = p.parameterize(half, bhd, uvmap, vimap, vpmap);
-      break;
-    }
-    case Weighting::MEAN_VALUE: {
-      SMP::Mean_value_coordinates_parameterizer_3<Half_mesh, Prescribed_border_parameterizer, SolverTraits> p(border_parameterizer, solver);
-      status = p.parameterize(half, bhd, uvmap, vimap, vpmap);
-      break;
-    }
-    case Weighting::COTANGENT: {
-      SMP::Discrete_conformal_map_parameterizer_3<Half_mesh, Prescribed_border_parameterizer, SolverTraits> p(border_parameterizer, solver);
-      status = p.parameterize(half, bhd, uvmap, vimap, vpmap);
-      break;
-    }
-    case Weighting::USER_MAP: {
-      Weight_table_parameterizer_3<SolverTraits> p(border_parameterizer, solver, &system, &global_index);
-      status = p.parameterize(half, bhd, uvmap, vimap, vpmap);
-      break;
-    }
+  const Weighting disk_weighting =
+      weighting != Weighting::UNIFORM && system.clamped_weights > 0 ? Weighting::USER_MAP : weighting;
+  switch(disk_weighting)
+  {
+  case Weighting::UNIFORM:
+  {
+    SMP::Barycentric_mapping_parameterizer_3<Half_mesh, Prescribed_border_parameterizer, SolverTraits> p(
+        border_parameterizer, solver);
+    status = p.parameterize(half, bhd, uvmap, vimap, vpmap);
+    break;
   }
-  if(status != SMP::OK) return false;
-  for(Half_vertex hv : vertices(half)) {
+  case Weighting::MEAN_VALUE:
+  {
+    SMP::Mean_value_coordinates_parameterizer_3<Half_mesh, Prescribed_border_parameterizer, SolverTraits> p(
+        border_parameterizer, solver);
+    status = p.parameterize(half, bhd, uvmap, vimap, vpmap);
+    break;
+  }
+  case Weighting::COTANGENT:
+  {
+    SMP::Discrete_conformal_map_parameterizer_3<Half_mesh, Prescribed_border_parameterizer, SolverTraits> p(
+        border_parameterizer, solver);
+    status = p.parameterize(half, bhd, uvmap, vimap, vpmap);
+    break;
+  }
+  case Weighting::USER_MAP:
+  {
+    Weight_table_parameterizer_3<SolverTraits> p(border_parameterizer, solver, &system, &global_index);
+    status = p.parameterize(half, bhd, uvmap, vimap, vpmap);
+    break;
+  }
+  }
+  if(status != SMP::OK)
+    return false;
+  for(Half_vertex hv : vertices(half))
+  {
     const Point_2& q = get(uvmap, hv);
-    if(!std::isfinite(q.x()) || !std::isfinite(q.y())) return false;
+    if(!std::isfinite(q.x()) || !std::isfinite(q.y()))
+      return false;
     const std::size_t g = static_cast<std::size_t>(global_index[static_cast<std::size_t>(hv)]);
     u[g] = q.x();
     v[g] = q.y();

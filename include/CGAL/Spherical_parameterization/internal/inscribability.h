@@ -29,10 +29,11 @@ namespace CGAL {
 namespace Spherical_parameterization {
 namespace internal {
 
-struct Inscribability_check {
+struct Inscribability_check
+{
   bool proven_not_inscribable = false;
-  std::size_t independent_set_size = 0;   // |S| of the greedy independent set
-  bool edge_outside_set = false;          // an edge joins two vertices outside S
+  std::size_t independent_set_size = 0; // |S| of the greedy independent set
+  bool edge_outside_set = false;        // an edge joins two vertices outside S
 };
 
 inline Inscribability_check check_inscribability(const Sphere_system& system)
@@ -40,19 +41,29 @@ inline Inscribability_check check_inscribability(const Sphere_system& system)
   const std::size_t n = system.number_of_vertices;
   std::vector<std::size_t> order(n);
   std::iota(order.begin(), order.end(), std::size_t(0));
-  std::stable_sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) { return system.degree(a) < system.degree(b); });
+  std::stable_sort(order.begin(), order.end(),
+                   [&](std::size_t a, std::size_t b) { return system.degree(a) < system.degree(b); });
   std::vector<char> in_set(n, 0), blocked(n, 0);
   Inscribability_check check;
-  for(std::size_t v : order) {
-    if(blocked[v]) continue;
+  for(std::size_t v : order)
+  {
+    if(blocked[v])
+      continue;
     in_set[v] = 1;
     ++check.independent_set_size;
-    for(std::size_t k = system.offsets[v]; k < system.offsets[v + 1]; ++k) blocked[std::size_t(system.neighbors[k])] = 1;
-  }
-  for(std::size_t v = 0; v < n && !check.edge_outside_set; ++v) {
-    if(in_set[v]) continue;
     for(std::size_t k = system.offsets[v]; k < system.offsets[v + 1]; ++k)
-      if(!in_set[std::size_t(system.neighbors[k])]) { check.edge_outside_set = true; break; }
+      blocked[std::size_t(system.neighbors[k])] = 1;
+  }
+  for(std::size_t v = 0; v < n && !check.edge_outside_set; ++v)
+  {
+    if(in_set[v])
+      continue;
+    for(std::size_t k = system.offsets[v]; k < system.offsets[v + 1]; ++k)
+      if(!in_set[std::size_t(system.neighbors[k])])
+      {
+        check.edge_outside_set = true;
+        break;
+      }
   }
   const std::size_t twice = 2 * check.independent_set_size;
   check.proven_not_inscribable = twice > n || (twice == n && check.edge_outside_set);

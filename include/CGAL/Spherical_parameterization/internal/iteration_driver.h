@@ -28,12 +28,13 @@ namespace CGAL {
 namespace Spherical_parameterization {
 namespace internal {
 
-struct Iteration_options {
+struct Iteration_options
+{
   double tolerance = 1e-6;
   Convergence_test convergence_test = Convergence_test::IMBALANCE;
   std::size_t max_gauss_seidel_sweeps = 1000;
   std::size_t max_newton_sweeps = 200000;
-  double max_seconds = -1.;           // negative: no budget
+  double max_seconds = -1.; // negative: no budget
   bool preserve_bijectivity = true;
   Solver_tuning tuning;
   // Called after every sweep; returning false cancels the iterations.
@@ -44,16 +45,17 @@ struct Iteration_options {
   bool cancel_requested() const { return keep_going && !keep_going(); }
 };
 
-struct Iteration_report {
+struct Iteration_report
+{
   std::size_t sweeps = 0;
   double residual = -1.;
   bool converged = false;
   bool out_of_time = false;
-  bool stagnated = false;       // the convergence measure stopped decreasing before the tolerance
-  bool cancelled = false;       // the progress callback asked to stop
+  bool stagnated = false; // the convergence measure stopped decreasing before the tolerance
+  bool cancelled = false; // the progress callback asked to stop
   std::size_t rejected_moves = 0;
-  std::size_t linear_iterations = 0;    // iterations of the iterative linear solver (MINRES), if one ran
-  double continuation_parameter = -1.;  // how far the continuation from Tutte's weights got (-1: not tried)
+  std::size_t linear_iterations = 0;   // iterations of the iterative linear solver (MINRES), if one ran
+  double continuation_parameter = -1.; // how far the continuation from Tutte's weights got (-1: not tried)
 };
 
 // The time budget, checked between iterations and, inside the long ones, between their parts.
@@ -67,8 +69,10 @@ inline bool past_time_budget(const Iteration_options& options, const CGAL::Real_
 // have no exact solution, the imbalance test bounds the stationarity of their least-squares problem instead.
 inline bool has_converged(const Map_measure& measure, std::size_t invalid_faces, const Iteration_options& options)
 {
-  if(invalid_faces != 0) return false;
-  if(options.convergence_test == Convergence_test::PAPER_RESIDUAL) return measure.residual < options.tolerance;
+  if(invalid_faces != 0)
+    return false;
+  if(options.convergence_test == Convergence_test::PAPER_RESIDUAL)
+    return measure.residual < options.tolerance;
   return measure.tested().balanced();
 }
 
@@ -85,60 +89,68 @@ inline double convergence_measure(const Map_measure& measure, const Iteration_op
 template <typename Admissible, typename Acceptable>
 double backtracking_line_search(double min_step, Admissible&& admissible, Acceptable&& acceptable)
 {
-  for(double t = 1.; t > min_step; t *= 0.5) {
-    if(!admissible(t)) continue;
-    if(acceptable(t)) return t;
+  for(double t = 1.; t > min_step; t *= 0.5)
+  {
+    if(!admissible(t))
+      continue;
+    if(acceptable(t))
+      return t;
   }
   return 0.;
 }
 
-class Iteration_driver {
+class Iteration_driver
+{
 public:
   // `stage`: the name in progress reports; `max_iterations`: the cap.
-  Iteration_driver(Sphere_state& state, const Iteration_options& options, const CGAL::Real_timer& clock, const char* stage,
-                   std::size_t max_iterations)
-    : state_(state), options_(options), clock_(clock), stage_(stage), max_iterations_(max_iterations) {}
+  Iteration_driver(Sphere_state& state, const Iteration_options& options, const CGAL::Real_timer& clock,
+                   const char* stage, std::size_t max_iterations)
+    : m_state(state), m_options(options), m_clock(clock), m_stage(stage), m_max_iterations(max_iterations)
+  {}
 
   // Stop when the convergence measure fell by less than 1 - tuning.stagnation_ratio over `window` iterations.
-  void watch_stagnation(std::size_t window) { stagnation_window_ = window; }
+  void watch_stagnation(std::size_t window) { m_stagnation_window = window; }
 
   // Keep the best iterate from now on: the fewest non-positive faces, then the lowest imbalances (root mean square;
   // never Res: the iterate of lowest Res can be the most collapsed one). restore_best() puts it back.
   void keep_best_iterate()
   {
-    keep_best_ = true;
+    m_keep_best = true;
     const Map_measure& now = measure();
-    best_ = state_.positions();
-    best_invalid_ = state_.invalid_faces();
-    best_imbalance_ = now.imbalance.rms;
+    m_best = m_state.positions();
+    m_best_invalid = m_state.invalid_faces();
+    m_best_imbalance = now.imbalance.rms;
   }
 
   // The measures of the current iterate, computed once per change of the positions. `residual`, when given,
   // replaces Res (the paper's sweeps compute their own from the cached sums, in another rounding).
   const Map_measure& measure()
   {
-    if(!measured_ || measured_revision_ != state_.revision()) {
-      measure_ = measure_map(state_.system(), state_.positions(), options_.tolerance);
-      measured_ = true;
-      measured_revision_ = state_.revision();
+    if(!m_measured || m_measured_revision != m_state.revision())
+    {
+      m_measure = measure_map(m_state.system(), m_state.positions(), m_options.tolerance);
+      m_measured = true;
+      m_measured_revision = m_state.revision();
     }
-    return measure_;
+    return m_measure;
   }
   const Map_measure& measure(double residual)
   {
     measure();
-    measure_.residual = residual;
-    return measure_;
+    m_measure.residual = residual;
+    return m_measure;
   }
 
-  bool converged() { return has_converged(measure(), state_.invalid_faces(), options_); }
+  bool converged() { return has_converged(measure(), m_state.invalid_faces(), m_options); }
 
   // Whether another iteration may start: the map is not converged yet (when `test_convergence`), the cap is not
   // reached, and the time budget is not spent (report().out_of_time).
   bool may_start(bool test_convergence = true)
   {
-    if(test_convergence && converged()) return false;
-    if(report_.sweeps >= max_iterations_) return false;
+    if(test_convergence && converged())
+      return false;
+    if(m_report.sweeps >= m_max_iterations)
+      return false;
     return within_budget(false);
   }
 
@@ -146,37 +158,51 @@ public:
   // is spent (report().out_of_time).
   bool within_budget(bool poll_cancel = true)
   {
-    if(poll_cancel && options_.cancel_requested()) { report_.cancelled = true; return false; }
-    if(past_time_budget(options_, clock_)) { report_.out_of_time = true; return false; }
+    if(poll_cancel && m_options.cancel_requested())
+    {
+      m_report.cancelled = true;
+      return false;
+    }
+    if(past_time_budget(m_options, m_clock))
+    {
+      m_report.out_of_time = true;
+      return false;
+    }
     return true;
   }
 
   // An iteration that produced no new iterate but counts against the cap (it is not reported).
-  void count_retry() { ++report_.sweeps; }
+  void count_retry() { ++m_report.sweeps; }
 
   // After an iteration: counts it, measures the new iterate (`residual`: as in measure()), keeps the best, reports
   // progress and watches stagnation. False when the loop must stop: cancelled, or stagnated (report().stagnated).
   bool end_iteration(double residual = -1.)
   {
-    ++report_.sweeps;
+    ++m_report.sweeps;
     const Map_measure& now = residual >= 0. ? measure(residual) : measure();
-    if(keep_best_) {
-      const std::size_t invalid = state_.invalid_faces();
-      if(invalid < best_invalid_ || (invalid == best_invalid_ && now.imbalance.rms < best_imbalance_)) {
-        best_ = state_.positions();
-        best_invalid_ = invalid;
-        best_imbalance_ = now.imbalance.rms;
+    if(m_keep_best)
+    {
+      const std::size_t invalid = m_state.invalid_faces();
+      if(invalid < m_best_invalid || (invalid == m_best_invalid && now.imbalance.rms < m_best_imbalance))
+      {
+        m_best = m_state.positions();
+        m_best_invalid = invalid;
+        m_best_imbalance = now.imbalance.rms;
       }
     }
-    if(options_.progress && !options_.progress(stage_, report_.sweeps, now.residual, state_.invalid_faces())) {
-      report_.cancelled = true;
+    if(m_options.progress && !m_options.progress(m_stage, m_report.sweeps, now.residual, m_state.invalid_faces()))
+    {
+      m_report.cancelled = true;
       return false;
     }
-    if(stagnation_window_ > 0) {
-      history_.push_back(convergence_measure(now, options_));
-      if(history_.size() > stagnation_window_ &&
-         history_.back() > options_.tuning.stagnation_ratio * history_[history_.size() - 1 - stagnation_window_]) {
-        report_.stagnated = true;
+    if(m_stagnation_window > 0)
+    {
+      m_history.push_back(convergence_measure(now, m_options));
+      if(m_history.size() > m_stagnation_window
+         && m_history.back()
+                > m_options.tuning.stagnation_ratio * m_history[m_history.size() - 1 - m_stagnation_window])
+      {
+        m_report.stagnated = true;
         return false;
       }
     }
@@ -184,35 +210,39 @@ public:
   }
 
   // Puts the best iterate back (after keep_best_iterate()), or the given positions.
-  void restore_best() { if(keep_best_) state_.assign(best_); }
-  void restore(const std::vector<Vector3>& positions) { state_.assign(positions); }
+  void restore_best()
+  {
+    if(m_keep_best)
+      m_state.assign(m_best);
+  }
+  void restore(const std::vector<Vector3>& positions) { m_state.assign(positions); }
 
   // The counters and flags, with the final Res and convergence filled in.
   Iteration_report& finish()
   {
-    report_.residual = measure().residual;
-    report_.converged = converged();
-    return report_;
+    m_report.residual = measure().residual;
+    m_report.converged = converged();
+    return m_report;
   }
-  Iteration_report& report() { return report_; }
-  std::size_t iterations() const { return report_.sweeps; }
+  Iteration_report& report() { return m_report; }
+  std::size_t iterations() const { return m_report.sweeps; }
 
 private:
-  Sphere_state& state_;
-  const Iteration_options& options_;
-  const CGAL::Real_timer& clock_;
-  const char* stage_;
-  std::size_t max_iterations_;
-  Iteration_report report_;
-  Map_measure measure_;
-  bool measured_ = false;
-  std::size_t measured_revision_ = 0;
-  std::size_t stagnation_window_ = 0;
-  std::vector<double> history_;
-  bool keep_best_ = false;
-  std::vector<Vector3> best_;
-  std::size_t best_invalid_ = 0;
-  double best_imbalance_ = 0.;
+  Sphere_state& m_state;
+  const Iteration_options& m_options;
+  const CGAL::Real_timer& m_clock;
+  const char* m_stage;
+  std::size_t m_max_iterations;
+  Iteration_report m_report;
+  Map_measure m_measure;
+  bool m_measured = false;
+  std::size_t m_measured_revision = 0;
+  std::size_t m_stagnation_window = 0;
+  std::vector<double> m_history;
+  bool m_keep_best = false;
+  std::vector<Vector3> m_best;
+  std::size_t m_best_invalid = 0;
+  double m_best_imbalance = 0.;
 };
 
 } // namespace internal

@@ -37,14 +37,15 @@ namespace internal {
 // the fine one (long fans of thin triangles).
 constexpr std::size_t coarsening_max_degree = 12;
 
-struct Coarsening {
-  Mesh_arrays coarse;                     // the kept vertices (compact indices, in the fine order) and triangles
-                                          // (no polygons: nothing checks the coarse mesh as input)
-  std::vector<int> coarse_index;          // fine vertex -> its coarse index, -1 if removed
-  std::vector<int> removed;               // fine indices, in the order of their removal
-  std::vector<int> targets;               // the neighbour each removed vertex was collapsed into (fine index)
-  std::vector<std::size_t> ring_offsets;  // ring of removed[k]: rings[ring_offsets[k] .. ring_offsets[k + 1])
-  std::vector<int> rings;                 // fine indices, counter-clockwise, as at the removal
+struct Coarsening
+{
+  Mesh_arrays coarse;                    // the kept vertices (compact indices, in the fine order) and triangles
+                                         // (no polygons: nothing checks the coarse mesh as input)
+  std::vector<int> coarse_index;         // fine vertex -> its coarse index, -1 if removed
+  std::vector<int> removed;              // fine indices, in the order of their removal
+  std::vector<int> targets;              // the neighbour each removed vertex was collapsed into (fine index)
+  std::vector<std::size_t> ring_offsets; // ring of removed[k]: rings[ring_offsets[k] .. ring_offsets[k + 1])
+  std::vector<int> rings;                // fine indices, counter-clockwise, as at the removal
   std::size_t rounds = 0;
 };
 
@@ -55,7 +56,8 @@ inline void ring_of(int u, const std::vector<std::array<int, 3>>& faces, const s
                     std::vector<int>& ring)
 {
   ring.clear();
-  if(incident.empty()) return;
+  if(incident.empty())
+    return;
   auto others = [&](int f, int& a, int& b) {
     const std::array<int, 3>& t = faces[static_cast<std::size_t>(f)];
     const int k = t[0] == u ? 0 : (t[1] == u ? 1 : 2);
@@ -67,21 +69,30 @@ inline void ring_of(int u, const std::vector<std::array<int, 3>>& faces, const s
   const int first = a;
   ring.push_back(a);
   int current = b;
-  while(current != first && ring.size() <= incident.size()) {
+  while(current != first && ring.size() <= incident.size())
+  {
     ring.push_back(current);
     bool found = false;
-    for(int f : incident) {
+    for(int f : incident)
+    {
       others(f, a, b);
-      if(a == current) { current = b; found = true; break; }
+      if(a == current)
+      {
+        current = b;
+        found = true;
+        break;
+      }
     }
-    if(!found) break;
+    if(!found)
+      break;
   }
 }
 
 inline void erase_value(std::vector<int>& values, int value)
 {
   auto it = std::find(values.begin(), values.end(), value);
-  if(it != values.end()) {
+  if(it != values.end())
+  {
     *it = values.back();
     values.pop_back();
   }
@@ -98,68 +109,89 @@ inline Coarsening coarsen_mesh(const std::vector<Vector3>& points, const std::ve
   using namespace coarsening_detail;
   const std::size_t n = points.size();
   target_vertices = std::max<std::size_t>(target_vertices, 8);
-  CGAL_precondition(2 * n == triangles.size() + 4);  // closed genus 0: F = 2 V - 4
+  CGAL_precondition(2 * n == triangles.size() + 4); // closed genus 0: F = 2 V - 4
   Coarsening result;
   std::vector<std::array<int, 3>> faces = triangles;
   std::vector<char> face_alive(faces.size(), 1), vertex_alive(n, 1), locked(n, 0);
   std::vector<std::vector<int>> incident(n);
   for(std::size_t f = 0; f < faces.size(); ++f)
-    for(int v : faces[f]) incident[static_cast<std::size_t>(v)].push_back(static_cast<int>(f));
-  std::vector<int> in_ring_of(n, -1);  // in_ring_of[w] == u: w is a neighbour of u (the vertex being tried)
+    for(int v : faces[f])
+      incident[static_cast<std::size_t>(v)].push_back(static_cast<int>(f));
+  std::vector<int> in_ring_of(n, -1); // in_ring_of[w] == u: w is a neighbour of u (the vertex being tried)
   std::vector<int> ring;
   result.ring_offsets.push_back(0);
   std::size_t alive = n;
   bool progress = true;
-  while(alive > target_vertices && progress) {
+  while(alive > target_vertices && progress)
+  {
     progress = false;
     ++result.rounds;
     std::fill(locked.begin(), locked.end(), 0);
-    for(std::size_t iu = 0; iu < n && alive > target_vertices; ++iu) {
-      if(!vertex_alive[iu] || locked[iu]) continue;
+    for(std::size_t iu = 0; iu < n && alive > target_vertices; ++iu)
+    {
+      if(!vertex_alive[iu] || locked[iu])
+        continue;
       const int u = static_cast<int>(iu);
       ring_of(u, faces, incident[iu], ring);
       const std::size_t d = ring.size();
-      if(d != incident[iu].size() || d < 3) continue;  // not a simple ring (cannot happen on a valid mesh)
-      for(int w : ring) in_ring_of[static_cast<std::size_t>(w)] = u;
+      if(d != incident[iu].size() || d < 3)
+        continue; // not a simple ring (cannot happen on a valid mesh)
+      for(int w : ring)
+        in_ring_of[static_cast<std::size_t>(w)] = u;
       // The target: the neighbour that gives the smallest degree, then the shortest edge.
       std::size_t best = d;
       std::size_t best_degree = coarsening_max_degree + 1;
       double best_length = std::numeric_limits<double>::infinity();
-      for(std::size_t k = 0; k < d; ++k) {
+      for(std::size_t k = 0; k < d; ++k)
+      {
         const std::size_t v = static_cast<std::size_t>(ring[k]);
         const std::size_t degree = d + incident[v].size() - 4;
-        if(degree > coarsening_max_degree || degree > best_degree) continue;
+        if(degree > coarsening_max_degree || degree > best_degree)
+          continue;
         const int before = ring[(k + d - 1) % d], after = ring[(k + 1) % d];
         // Link condition: u and v share no neighbour but `before` and `after`.
         bool link = true;
-        for(int f : incident[v]) {
+        for(int f : incident[v])
+        {
           for(int w : faces[static_cast<std::size_t>(f)])
-            if(w != static_cast<int>(v) && w != u && w != before && w != after && in_ring_of[static_cast<std::size_t>(w)] == u) {
+            if(w != static_cast<int>(v) && w != u && w != before && w != after
+               && in_ring_of[static_cast<std::size_t>(w)] == u)
+            {
               link = false;
               break;
             }
-          if(!link) break;
+          if(!link)
+            break;
         }
-        if(!link) continue;
+        if(!link)
+          continue;
         const double edge = squared_length(points[v] - points[iu]);
-        if(degree < best_degree || edge < best_length) {
+        if(degree < best_degree || edge < best_length)
+        {
           best = k;
           best_degree = degree;
           best_length = edge;
         }
       }
-      if(best == d) continue;
+      if(best == d)
+        continue;
       const int v = ring[best];
       // Collapse u into v: the two faces on the edge go, the others take v for u.
-      for(int f : incident[iu]) {
+      for(int f : incident[iu])
+      {
         std::array<int, 3>& t = faces[static_cast<std::size_t>(f)];
-        if(t[0] == v || t[1] == v || t[2] == v) {
+        if(t[0] == v || t[1] == v || t[2] == v)
+        {
           face_alive[static_cast<std::size_t>(f)] = 0;
           for(int w : t)
-            if(w != u) erase_value(incident[static_cast<std::size_t>(w)], f);
-        } else {
+            if(w != u)
+              erase_value(incident[static_cast<std::size_t>(w)], f);
+        }
+        else
+        {
           for(int& w : t)
-            if(w == u) w = v;
+            if(w == u)
+              w = v;
           incident[static_cast<std::size_t>(v)].push_back(f);
         }
       }
@@ -167,7 +199,8 @@ inline Coarsening coarsen_mesh(const std::vector<Vector3>& points, const std::ve
       vertex_alive[iu] = 0;
       --alive;
       progress = true;
-      for(int w : ring) locked[static_cast<std::size_t>(w)] = 1;
+      for(int w : ring)
+        locked[static_cast<std::size_t>(w)] = 1;
       result.removed.push_back(u);
       result.targets.push_back(v);
       result.rings.insert(result.rings.end(), ring.begin(), ring.end());
@@ -177,12 +210,15 @@ inline Coarsening coarsen_mesh(const std::vector<Vector3>& points, const std::ve
   result.coarse_index.assign(n, -1);
   int next = 0;
   for(std::size_t i = 0; i < n; ++i)
-    if(vertex_alive[i]) {
+    if(vertex_alive[i])
+    {
       result.coarse_index[i] = next++;
       result.coarse.points.push_back(points[i]);
     }
-  for(std::size_t f = 0; f < faces.size(); ++f) {
-    if(!face_alive[f]) continue;
+  for(std::size_t f = 0; f < faces.size(); ++f)
+  {
+    if(!face_alive[f])
+      continue;
     const std::array<int, 3>& t = faces[f];
     result.coarse.triangles.push_back(canonical_triangle(result.coarse_index[static_cast<std::size_t>(t[0])],
                                                          result.coarse_index[static_cast<std::size_t>(t[1])],
@@ -212,48 +248,62 @@ inline std::size_t prolong(const Coarsening& coarsening, const std::vector<Vecto
   CGAL_precondition(coarse_x.size() == coarsening.coarse.points.size());
   x.assign(n, Vector3());
   for(std::size_t i = 0; i < n; ++i)
-    if(coarsening.coarse_index[i] >= 0) x[i] = coarse_x[static_cast<std::size_t>(coarsening.coarse_index[i])];
+    if(coarsening.coarse_index[i] >= 0)
+      x[i] = coarse_x[static_cast<std::size_t>(coarsening.coarse_index[i])];
   std::size_t folded = 0;
-  for(std::size_t k = coarsening.removed.size(); k-- > 0;) {
+  for(std::size_t k = coarsening.removed.size(); k-- > 0;)
+  {
     const int* ring = coarsening.rings.data() + coarsening.ring_offsets[k];
     const std::size_t d = coarsening.ring_offsets[k + 1] - coarsening.ring_offsets[k];
     auto at = [&](std::size_t m) -> const Vector3& { return x[static_cast<std::size_t>(ring[m % d])]; };
     auto positive_fan = [&](const Vector3& p) {
       for(std::size_t m = 0; m < d; ++m)
-        if(!(determinant(p, at(m), at(m + 1)) > 0.)) return false;
+        if(!(determinant(p, at(m), at(m + 1)) > 0.))
+          return false;
       return true;
     };
     Vector3 mean;
-    for(std::size_t m = 0; m < d; ++m) mean += at(m);
+    for(std::size_t m = 0; m < d; ++m)
+      mean += at(m);
     Vector3& p = x[static_cast<std::size_t>(coarsening.removed[k])];
     p = mean * (1. / length(mean));
-    if(positive_fan(p)) continue;
+    if(positive_fan(p))
+      continue;
     // The ring around v counter-clockwise: ..., before, v, after, ...; the angle at v from `after` to `before`.
     const int v = coarsening.targets[k];
     std::size_t position = 0;
-    while(position < d && ring[position] != v) ++position;
+    while(position < d && ring[position] != v)
+      ++position;
     const Vector3& centre = x[static_cast<std::size_t>(v)];
     Vector3 e1, e2;
     tangent_frame(centre, e1, e2);
-    auto angle_of = [&](const Vector3& q) { const Vector3 t = q - centre; return std::atan2(dot(t, e2), dot(t, e1)); };
+    auto angle_of = [&](const Vector3& q) {
+      const Vector3 t = q - centre;
+      return std::atan2(dot(t, e2), dot(t, e1));
+    };
     const double first = angle_of(at(position + 1)), last = angle_of(at(position + d - 1));
     double span = last - first;
-    while(span <= 0.) span += 2. * CGAL_PI;
+    while(span <= 0.)
+      span += 2. * CGAL_PI;
     const double bisector = first + 0.5 * span;
     double shortest = std::numeric_limits<double>::infinity();
     for(std::size_t m = 0; m < d; ++m)
-      if(m != position) shortest = std::min(shortest, length(at(m) - centre));
+      if(m != position)
+        shortest = std::min(shortest, length(at(m) - centre));
     const Vector3 direction = std::cos(bisector) * e1 + std::sin(bisector) * e2;
     bool placed = false;
-    for(double t = 0.25 * shortest; t > 1e-6 * shortest && !placed; t *= 0.5) {
+    for(double t = 0.25 * shortest; t > 1e-6 * shortest && !placed; t *= 0.5)
+    {
       const Vector3 q = centre + t * direction;
       const Vector3 candidate = q * (1. / length(q));
-      if(positive_fan(candidate)) {
+      if(positive_fan(candidate))
+      {
         p = candidate;
         placed = true;
       }
     }
-    if(!placed) ++folded;
+    if(!placed)
+      ++folded;
   }
   return folded;
 }

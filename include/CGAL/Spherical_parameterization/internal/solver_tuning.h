@@ -18,7 +18,8 @@ namespace CGAL {
 namespace Spherical_parameterization {
 namespace internal {
 
-struct Solver_tuning {
+struct Solver_tuning
+{
   // --- The multilevel start (spherical_parameterize.h) ---
   // Meshes from this many vertices on start from a coarser mesh (uniform weights, global solver).
   std::size_t multilevel_min_vertices = 20000;
@@ -68,15 +69,15 @@ struct Solver_tuning {
   // --- Stagnation: stop when the convergence measure (the worst imbalance over its allowance, or Res) fell by less
   // than 1 - stagnation_ratio over the window ---
   double stagnation_ratio = 0.99;
-  std::size_t newton_stagnation_window = 50;     // Moebius-aware Newton: full steps that lower Res without balancing
-  std::size_t cautious_stagnation_window = 200;  // cautious Newton: non-symmetric weights level off at a floor
-  std::size_t local_stagnation_window = 1000;    // the paper's local Newton
+  std::size_t newton_stagnation_window = 50;    // Moebius-aware Newton: full steps that lower Res without balancing
+  std::size_t cautious_stagnation_window = 200; // cautious Newton: non-symmetric weights level off at a floor
+  std::size_t local_stagnation_window = 1000;   // the paper's local Newton
 
   // --- Levenberg-Marquardt steps of the cautious Newton (non-symmetric weights) ---
-  double marquardt_initial = 1e-6;  // relative shift of J^T J
+  double marquardt_initial = 1e-6; // relative shift of J^T J
   double marquardt_max = 1e6;
   int marquardt_attempts = 6;
-  double cautious_damping = 1e-10;  // relative diagonal shift against the rotations (symmetric weights)
+  double cautious_damping = 1e-10; // relative diagonal shift against the rotations (symmetric weights)
 
   // --- The interior-point iterations (constrained_balance.h) where the weight continuation ends ---
   // The first barrier parameter: the path's last map is balanced for other weights, and its imbalances under the

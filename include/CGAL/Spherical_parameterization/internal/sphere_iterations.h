@@ -30,7 +30,8 @@ namespace internal {
 
 // Paper, Section 3.2, with lambda = 1: x_i <- s_i / |s_i| in turn, while Res decreases. The last iterate whose
 // residual did not grow is kept.
-inline Iteration_report projected_gauss_seidel(Sphere_state& state, const Iteration_options& options, const CGAL::Real_timer& clock)
+inline Iteration_report projected_gauss_seidel(Sphere_state& state, const Iteration_options& options,
+                                               const CGAL::Real_timer& clock)
 {
   Iteration_driver driver(state, options, clock, "gauss-seidel", options.max_gauss_seidel_sweeps);
   const Sphere_system& system = state.system();
@@ -38,26 +39,34 @@ inline Iteration_report projected_gauss_seidel(Sphere_state& state, const Iterat
   double residual = state.refresh_sums();
   std::vector<Vector3> previous;
   // The paper sweeps once before testing: the test comes after each sweep.
-  while(driver.may_start(false)) {
+  while(driver.may_start(false))
+  {
     previous = x;
-    for(std::size_t i = 0; i < system.number_of_vertices; ++i) {
+    for(std::size_t i = 0; i < system.number_of_vertices; ++i)
+    {
       const Vector3 s = state.sum(i);
       const double norm = length(s);
-      if(!(norm > 0.)) continue;
-      if(!state.move_preserving_orientation(i, s * (1. / norm), options.preserve_bijectivity)) ++driver.report().rejected_moves;
+      if(!(norm > 0.))
+        continue;
+      if(!state.move_preserving_orientation(i, s * (1. / norm), options.preserve_bijectivity))
+        ++driver.report().rejected_moves;
     }
     const double next = state.refresh_sums();
     const bool go_on = driver.end_iteration(next);
-    if(!(next < residual)) {
+    if(!(next < residual))
+    {
       // Res grew: return to the previous iterate (faces flags follow the positions).
       for(std::size_t i = 0; i < system.number_of_vertices; ++i)
-        if(!(x[i] == previous[i])) state.move(i, previous[i]);
+        if(!(x[i] == previous[i]))
+          state.move(i, previous[i]);
       state.refresh_sums();
       break;
     }
     residual = next;
-    if(driver.converged()) break;
-    if(!go_on) break;
+    if(driver.converged())
+      break;
+    if(!go_on)
+      break;
   }
   Iteration_report report = driver.report();
   report.converged = driver.converged();
@@ -71,7 +80,8 @@ inline double one_ring_energy(const Sphere_state& state, std::vector<Vector3>& x
   const Sphere_system& system = state.system();
   const Vector3 delta = y - x[i];
   double energy = squared_length(cross(y, state.sum(i)));
-  for(std::size_t k = system.offsets[i]; k < system.offsets[i + 1]; ++k) {
+  for(std::size_t k = system.offsets[i]; k < system.offsets[i + 1]; ++k)
+  {
     const std::size_t j = static_cast<std::size_t>(system.neighbors[k]);
     energy += squared_length(cross(x[j], state.sum(j) + system.weights[system.reverse[k]] * delta));
   }
@@ -87,7 +97,8 @@ inline bool local_newton_step(Sphere_state& state, std::size_t i, bool preserve)
   const Sphere_system& system = state.system();
   std::vector<Vector3>& x = state.positions();
   const Vector3 xi = x[i];
-  const Vector3 helper = std::abs(xi.x) < 0.6 ? Vector3(1, 0, 0) : (std::abs(xi.y) < 0.6 ? Vector3(0, 1, 0) : Vector3(0, 0, 1));
+  const Vector3 helper =
+      std::abs(xi.x) < 0.6 ? Vector3(1, 0, 0) : (std::abs(xi.y) < 0.6 ? Vector3(0, 1, 0) : Vector3(0, 0, 1));
   Vector3 t1 = cross(xi, helper);
   t1 *= 1. / length(t1);
   const Vector3 t2 = cross(xi, t1);
@@ -95,18 +106,23 @@ inline bool local_newton_step(Sphere_state& state, std::size_t i, bool preserve)
   // Residual vectors r = x_k x s_k and their derivatives along t1 (theta) and t2 (phi).
   double h11 = 0., h12 = 0., h22 = 0., g1 = 0., g2 = 0.;
   auto accumulate = [&](const Vector3& r, const Vector3& d1, const Vector3& d2) {
-    h11 += dot(d1, d1); h12 += dot(d1, d2); h22 += dot(d2, d2);
-    g1 += dot(d1, r); g2 += dot(d2, r);
+    h11 += dot(d1, d1);
+    h12 += dot(d1, d2);
+    h22 += dot(d2, d2);
+    g1 += dot(d1, r);
+    g2 += dot(d2, r);
   };
   const Vector3& si = state.sum(i);
   accumulate(cross(xi, si), cross(t1, si), cross(t2, si));
-  for(std::size_t k = system.offsets[i]; k < system.offsets[i + 1]; ++k) {
+  for(std::size_t k = system.offsets[i]; k < system.offsets[i + 1]; ++k)
+  {
     const std::size_t j = static_cast<std::size_t>(system.neighbors[k]);
     const double w = system.weights[system.reverse[k]];
     accumulate(cross(x[j], state.sum(j)), w * cross(x[j], t1), w * cross(x[j], t2));
   }
   const double det = h11 * h22 - h12 * h12;
-  if(!(det > 1e-300)) return false;
+  if(!(det > 1e-300))
+    return false;
   const double theta = -(h22 * g1 - h12 * g2) / det;
   const double phi = -(h11 * g2 - h12 * g1) / det;
 
@@ -117,13 +133,16 @@ inline bool local_newton_step(Sphere_state& state, std::size_t i, bool preserve)
   const double current = one_ring_energy(state, x, i, xi);
   double best_lambda = 1.;
   double best = one_ring_energy(state, x, i, position(1.));
-  for(double lambda = 0.5; lambda > 0.05; lambda *= 0.5) {
+  for(double lambda = 0.5; lambda > 0.05; lambda *= 0.5)
+  {
     const double e = one_ring_energy(state, x, i, position(lambda));
-    if(!(e < best)) break;
+    if(!(e < best))
+      break;
     best = e;
     best_lambda = lambda;
   }
-  if(!(best < current)) return false;
+  if(!(best < current))
+    return false;
   Vector3 y = position(best_lambda);
   y *= 1. / length(y);
   return state.move_preserving_orientation(i, y, preserve);
@@ -131,23 +150,34 @@ inline bool local_newton_step(Sphere_state& state, std::size_t i, bool preserve)
 
 // The paper's stage 3: local Newton sweeps until the convergence test holds, no vertex moves, or 1000 sweeps gained
 // less than 1% in all; when it does not converge, the best iterate is returned.
-inline Iteration_report local_newton(Sphere_state& state, const Iteration_options& options, const CGAL::Real_timer& clock)
+inline Iteration_report local_newton(Sphere_state& state, const Iteration_options& options,
+                                     const CGAL::Real_timer& clock)
 {
   Iteration_driver driver(state, options, clock, "local newton", options.max_newton_sweeps);
   driver.watch_stagnation(options.tuning.local_stagnation_window);
   const Sphere_system& system = state.system();
   driver.measure(state.refresh_sums());
   driver.keep_best_iterate();
-  while(driver.may_start()) {
+  while(driver.may_start())
+  {
     std::size_t moved = 0;
-    for(std::size_t i = 0; i < system.number_of_vertices; ++i) {
-      if(local_newton_step(state, i, options.preserve_bijectivity)) ++moved;
-      else ++driver.report().rejected_moves;
+    for(std::size_t i = 0; i < system.number_of_vertices; ++i)
+    {
+      if(local_newton_step(state, i, options.preserve_bijectivity))
+        ++moved;
+      else
+        ++driver.report().rejected_moves;
     }
-    if(!driver.end_iteration(state.refresh_sums())) break;
-    if(moved == 0) { driver.report().stagnated = true; break; }
+    if(!driver.end_iteration(state.refresh_sums()))
+      break;
+    if(moved == 0)
+    {
+      driver.report().stagnated = true;
+      break;
+    }
   }
-  if(!driver.converged()) {
+  if(!driver.converged())
+  {
     driver.restore_best();
     state.refresh_sums();
   }

@@ -33,10 +33,11 @@ namespace CGAL {
 namespace Spherical_parameterization {
 namespace internal {
 
-struct Two_disk_partition {
-  std::vector<char> face_in_disk_a;   // 1: disk A, 0: disk B
-  std::vector<int> loop;              // the shared boundary, counter-clockwise around disk A
-  std::size_t separator_size = 0;     // vertices in METIS' separator (0 when METIS was not used)
+struct Two_disk_partition
+{
+  std::vector<char> face_in_disk_a; // 1: disk A, 0: disk B
+  std::vector<int> loop;            // the shared boundary, counter-clockwise around disk A
+  std::size_t separator_size = 0;   // vertices in METIS' separator (0 when METIS was not used)
   bool valid = false;
 };
 
@@ -48,11 +49,16 @@ inline std::vector<int> face_adjacency(const Sphere_system& system)
   const std::vector<std::array<int, 3>>& triangles = system.triangles;
   std::vector<int> opposite(3 * triangles.size(), -1);
   for(std::size_t f = 0; f < triangles.size(); ++f)
-    for(std::size_t k = 0; k < 3; ++k) {
+    for(std::size_t k = 0; k < 3; ++k)
+    {
       const int a = triangles[f][k];
       const std::size_t b = static_cast<std::size_t>(triangles[f][(k + 1) % 3]);
       for(std::size_t m = system.offsets[b]; m < system.offsets[b + 1]; ++m)
-        if(system.neighbors[m] == a) { opposite[3 * f + k] = system.ring_faces[m]; break; }
+        if(system.neighbors[m] == a)
+        {
+          opposite[3 * f + k] = system.ring_faces[m];
+          break;
+        }
     }
   return opposite;
 }
@@ -61,48 +67,58 @@ inline std::vector<int> face_adjacency(const Sphere_system& system)
 inline std::vector<idx_t> metis_vertex_separator(const Sphere_system& system, int seed, const idx_t* user_options)
 {
   idx_t n = static_cast<idx_t>(system.number_of_vertices);
-  if(n < 6) return {};  // too small for a meaningful separator: the disk growth alone balances it
+  if(n < 6)
+    return {}; // too small for a meaningful separator: the disk growth alone balances it
   std::vector<idx_t> xadj(system.offsets.begin(), system.offsets.end());
   std::vector<idx_t> adjncy(system.neighbors.begin(), system.neighbors.end());
   std::vector<idx_t> part(static_cast<std::size_t>(n), 0);
   idx_t options[METIS_NOPTIONS];
   METIS_SetDefaultOptions(options);
   options[METIS_OPTION_SEED] = static_cast<idx_t>(seed);
-  if(user_options != nullptr) std::copy(user_options, user_options + METIS_NOPTIONS, options);
+  if(user_options != nullptr)
+    std::copy(user_options, user_options + METIS_NOPTIONS, options);
   idx_t separator_size = 0;
-  const Deferred_stop_signals deferred;  // no stop signal lost inside METIS (see deferred_stop_signals.h)
-  if(METIS_ComputeVertexSeparator(&n, xadj.data(), adjncy.data(), nullptr, options, &separator_size, part.data()) != METIS_OK)
+  const Deferred_stop_signals deferred; // no stop signal lost inside METIS (see deferred_stop_signals.h)
+  if(METIS_ComputeVertexSeparator(&n, xadj.data(), adjncy.data(), nullptr, options, &separator_size, part.data())
+     != METIS_OK)
     return {};
   return part;
 }
 
-class Disk_grower {
+class Disk_grower
+{
 public:
   Disk_grower(const std::vector<std::array<int, 3>>& triangles, const std::vector<int>& opposite, std::size_t nv)
-    : triangles_(&triangles), opposite_(&opposite), in_disk_(triangles.size(), 0), faces_at_vertex_(nv, 0) {}
+    : m_triangles(&triangles), m_opposite(&opposite), m_in_disk(triangles.size(), 0), m_faces_at_vertex(nv, 0)
+  {}
 
-  std::size_t size() const { return size_; }
-  const std::vector<char>& in_disk() const { return in_disk_; }
-  bool contains(std::size_t f) const { return in_disk_[f] != 0; }
+  std::size_t size() const { return m_size; }
+  const std::vector<char>& in_disk() const { return m_in_disk; }
+  bool contains(std::size_t f) const { return m_in_disk[f] != 0; }
 
   int shared_edges(std::size_t f) const
   {
     int shared = 0;
-    for(int k = 0; k < 3; ++k) shared += in_disk_[static_cast<std::size_t>((*opposite_)[3 * f + static_cast<std::size_t>(k)])];
+    for(int k = 0; k < 3; ++k)
+      shared += m_in_disk[static_cast<std::size_t>((*m_opposite)[3 * f + static_cast<std::size_t>(k)])];
     return shared;
   }
 
   // Adding f keeps a disk iff it shares two edges, or one edge and its third vertex is new to the disk.
   bool can_add(std::size_t f) const
   {
-    if(in_disk_[f]) return false;
-    if(size_ == 0) return true;
+    if(m_in_disk[f])
+      return false;
+    if(m_size == 0)
+      return true;
     const int shared = shared_edges(f);
-    if(shared == 2) return true;
-    if(shared != 1) return false;
+    if(shared == 2)
+      return true;
+    if(shared != 1)
+      return false;
     for(int k = 0; k < 3; ++k)
-      if(in_disk_[static_cast<std::size_t>((*opposite_)[3 * f + static_cast<std::size_t>(k)])])
-        return faces_at_vertex_[static_cast<std::size_t>((*triangles_)[f][(k + 2) % 3])] == 0;
+      if(m_in_disk[static_cast<std::size_t>((*m_opposite)[3 * f + static_cast<std::size_t>(k)])])
+        return m_faces_at_vertex[static_cast<std::size_t>((*m_triangles)[f][(k + 2) % 3])] == 0;
     return false;
   }
 
@@ -112,16 +128,17 @@ public:
 private:
   void set(std::size_t f, char value)
   {
-    in_disk_[f] = value;
-    for(int v : (*triangles_)[f]) faces_at_vertex_[static_cast<std::size_t>(v)] += value ? 1 : -1;
-    size_ = value ? size_ + 1 : size_ - 1;
+    m_in_disk[f] = value;
+    for(int v : (*m_triangles)[f])
+      m_faces_at_vertex[static_cast<std::size_t>(v)] += value ? 1 : -1;
+    m_size = value ? m_size + 1 : m_size - 1;
   }
 
-  const std::vector<std::array<int, 3>>* triangles_;
-  const std::vector<int>* opposite_;
-  std::vector<char> in_disk_;
-  std::vector<int> faces_at_vertex_;
-  std::size_t size_ = 0;
+  const std::vector<std::array<int, 3>>* m_triangles;
+  const std::vector<int>* m_opposite;
+  std::vector<char> m_in_disk;
+  std::vector<int> m_faces_at_vertex;
+  std::size_t m_size = 0;
 };
 
 inline int boundary_edges(const Disk_grower& disk, const std::vector<int>& opposite, std::size_t f)
@@ -136,19 +153,28 @@ inline int boundary_edges(const Disk_grower& disk, const std::vector<int>& oppos
 inline void remove_ears(Disk_grower& disk, const std::vector<int>& opposite, std::size_t nf)
 {
   std::deque<std::size_t> work;
-  for(std::size_t f = 0; f < nf; ++f) work.push_back(f);
-  while(!work.empty()) {
+  for(std::size_t f = 0; f < nf; ++f)
+    work.push_back(f);
+  while(!work.empty())
+  {
     const std::size_t f = work.front();
     work.pop_front();
-    if(boundary_edges(disk, opposite, f) != 2) continue;
-    if(disk.contains(f)) {
-      if(disk.size() <= 1) continue;
+    if(boundary_edges(disk, opposite, f) != 2)
+      continue;
+    if(disk.contains(f))
+    {
+      if(disk.size() <= 1)
+        continue;
       disk.remove(f);
-    } else {
-      if(nf - disk.size() <= 1) continue;
+    }
+    else
+    {
+      if(nf - disk.size() <= 1)
+        continue;
       disk.add(f);
     }
-    for(int k = 0; k < 3; ++k) work.push_back(static_cast<std::size_t>(opposite[3 * f + static_cast<std::size_t>(k)]));
+    for(int k = 0; k < 3; ++k)
+      work.push_back(static_cast<std::size_t>(opposite[3 * f + static_cast<std::size_t>(k)]));
   }
 }
 
@@ -158,20 +184,26 @@ inline Disk_grower grow_disk(const std::vector<std::array<int, 3>>& triangles, c
 {
   Disk_grower disk(triangles, opposite, nv);
   std::deque<std::size_t> queue{seed};
-  while(!queue.empty() && disk.size() < target) {
+  while(!queue.empty() && disk.size() < target)
+  {
     const std::size_t f = queue.front();
     queue.pop_front();
-    if(!allowed[f] || !disk.can_add(f)) continue;
+    if(!allowed[f] || !disk.can_add(f))
+      continue;
     // Faces that share two edges with the disk are added at once: the disk stays compact, without ears.
     std::vector<std::size_t> added{f};
     disk.add(f);
-    while(!added.empty() && disk.size() < target) {
+    while(!added.empty() && disk.size() < target)
+    {
       const std::size_t g = added.back();
       added.pop_back();
-      for(int k = 0; k < 3; ++k) {
+      for(int k = 0; k < 3; ++k)
+      {
         const std::size_t h = static_cast<std::size_t>(opposite[3 * g + static_cast<std::size_t>(k)]);
         queue.push_back(h);
-        if(allowed[h] && !disk.contains(h) && disk.shared_edges(h) == 2 && disk.size() + 1 < triangles.size() && disk.size() < target) {
+        if(allowed[h] && !disk.contains(h) && disk.shared_edges(h) == 2 && disk.size() + 1 < triangles.size()
+           && disk.size() < target)
+        {
           disk.add(h);
           added.push_back(h);
         }
@@ -188,14 +220,17 @@ inline bool has_flat_face(const Disk_grower& disk, const std::vector<std::array<
                           const std::vector<int>& opposite, std::size_t nv)
 {
   const std::size_t nf = triangles.size();
-  if(disk.size() == 0 || disk.size() >= nf) return true;
+  if(disk.size() == 0 || disk.size() >= nf)
+    return true;
   std::vector<char> on_loop(nv, 0);
   for(std::size_t f = 0; f < nf; ++f)
     for(int k = 0; k < 3; ++k)
       if(disk.contains(static_cast<std::size_t>(opposite[3 * f + static_cast<std::size_t>(k)])) != disk.contains(f))
-        on_loop[static_cast<std::size_t>(triangles[f][k])] = on_loop[static_cast<std::size_t>(triangles[f][(k + 1) % 3])] = 1;
+        on_loop[static_cast<std::size_t>(triangles[f][k])] =
+            on_loop[static_cast<std::size_t>(triangles[f][(k + 1) % 3])] = 1;
   for(const auto& t : triangles)
-    if(on_loop[static_cast<std::size_t>(t[0])] && on_loop[static_cast<std::size_t>(t[1])] && on_loop[static_cast<std::size_t>(t[2])])
+    if(on_loop[static_cast<std::size_t>(t[0])] && on_loop[static_cast<std::size_t>(t[1])]
+       && on_loop[static_cast<std::size_t>(t[2])])
       return true;
   return false;
 }
@@ -206,63 +241,90 @@ inline Two_disk_partition split_into_two_disks(const Sphere_system& system, int 
   Two_disk_partition partition;
   const auto& triangles = system.triangles;
   const std::size_t nf = triangles.size(), nv = system.number_of_vertices;
-  if(nf < 2) return partition;
+  if(nf < 2)
+    return partition;
   const std::vector<int> opposite = face_adjacency(system);
-  for(int o : opposite) if(o < 0) return partition;
+  for(int o : opposite)
+    if(o < 0)
+      return partition;
 
   // Faces that may join disk A: none of their vertices in METIS' second part.
   const std::vector<idx_t> part = metis_vertex_separator(system, metis_seed, metis_options);
   std::vector<char> allowed(nf, 1);
   std::size_t seed = 0, target = nf / 2;
-  if(!part.empty()) {
-    for(idx_t p : part) partition.separator_size += (p == 2);
+  if(!part.empty())
+  {
+    for(idx_t p : part)
+      partition.separator_size += (p == 2);
     bool found_seed = false;
     std::size_t allowed_count = 0;
-    for(std::size_t f = 0; f < nf; ++f) {
+    for(std::size_t f = 0; f < nf; ++f)
+    {
       bool touches_b = false, inside_a = true;
-      for(int v : triangles[f]) {
+      for(int v : triangles[f])
+      {
         touches_b = touches_b || part[static_cast<std::size_t>(v)] == 1;
         inside_a = inside_a && part[static_cast<std::size_t>(v)] == 0;
       }
       allowed[f] = !touches_b;
       allowed_count += allowed[f];
-      if(inside_a && !found_seed) { seed = f; found_seed = true; }
+      if(inside_a && !found_seed)
+      {
+        seed = f;
+        found_seed = true;
+      }
     }
-    if(found_seed && allowed_count < nf) target = nf - 1;
-    else std::fill(allowed.begin(), allowed.end(), 1);
+    if(found_seed && allowed_count < nf)
+      target = nf - 1;
+    else
+      std::fill(allowed.begin(), allowed.end(), 1);
   }
 
   Disk_grower disk = grow_disk(triangles, opposite, nv, allowed, seed, target);
-  if(has_flat_face(disk, triangles, opposite, nv)) {
+  if(has_flat_face(disk, triangles, opposite, nv))
+  {
     // METIS' side was too small or thin to avoid a face with all vertices on the loop (tiny meshes): grow half
     // of the faces from successive seeds instead, keeping the first split without such a face.
     std::fill(allowed.begin(), allowed.end(), 1);
-    for(std::size_t start = 0; start < std::min<std::size_t>(nf, 16); ++start) {
+    for(std::size_t start = 0; start < std::min<std::size_t>(nf, 16); ++start)
+    {
       disk = grow_disk(triangles, opposite, nv, allowed, start, nf / 2);
-      if(!has_flat_face(disk, triangles, opposite, nv)) break;
+      if(!has_flat_face(disk, triangles, opposite, nv))
+        break;
     }
   }
   // The loop: boundary edges of A, oriented as A's faces, so A lies on their left.
   std::vector<int> next(nv, -1);
   std::size_t loop_edges = 0;
   int start = -1;
-  for(std::size_t f = 0; f < nf; ++f) {
-    if(!disk.contains(f)) continue;
-    for(int k = 0; k < 3; ++k) {
-      if(disk.contains(static_cast<std::size_t>(opposite[3 * f + static_cast<std::size_t>(k)]))) continue;
+  for(std::size_t f = 0; f < nf; ++f)
+  {
+    if(!disk.contains(f))
+      continue;
+    for(int k = 0; k < 3; ++k)
+    {
+      if(disk.contains(static_cast<std::size_t>(opposite[3 * f + static_cast<std::size_t>(k)])))
+        continue;
       const int a = triangles[f][k], b = triangles[f][(k + 1) % 3];
-      if(next[static_cast<std::size_t>(a)] != -1) return partition;  // not a simple loop
+      if(next[static_cast<std::size_t>(a)] != -1)
+        return partition; // not a simple loop
       next[static_cast<std::size_t>(a)] = b;
       ++loop_edges;
-      if(start == -1 || a < start) start = a;
+      if(start == -1 || a < start)
+        start = a;
     }
   }
   int v = start;
-  do {
+  do
+  {
     partition.loop.push_back(v);
     v = next[static_cast<std::size_t>(v)];
   } while(v != start && v != -1 && partition.loop.size() <= loop_edges);
-  if(v != start || partition.loop.size() != loop_edges || loop_edges < 3) { partition.loop.clear(); return partition; }
+  if(v != start || partition.loop.size() != loop_edges || loop_edges < 3)
+  {
+    partition.loop.clear();
+    return partition;
+  }
 
   partition.face_in_disk_a = disk.in_disk();
   partition.valid = true;

@@ -27,16 +27,15 @@ struct Compressed_row_matrix
 {
   Index number_of_rows = 0;
   Index number_of_columns = 0;
-  std::vector<Index> row_start;   // size number_of_rows + 1
-  std::vector<Index> column;      // sorted within each row
+  std::vector<Index> row_start; // size number_of_rows + 1
+  std::vector<Index> column;    // sorted within each row
   std::vector<double> value;
 
   std::size_t number_of_nonzeros() const { return column.size(); }
 
   std::size_t memory_bytes() const
   {
-    return row_start.capacity() * sizeof(Index) + column.capacity() * sizeof(Index)
-         + value.capacity() * sizeof(double);
+    return row_start.capacity() * sizeof(Index) + column.capacity() * sizeof(Index) + value.capacity() * sizeof(double);
   }
 
   void clear_and_release()
@@ -250,8 +249,7 @@ inline bool is_numerically_symmetric(const Compressed_row_matrix& A, double rela
         continue;
       // Each pair is checked from both rows, which also catches an entry missing on one side.
       const double transposed = find(j, i);
-      if(std::abs(A.value[k] - transposed)
-         > relative_tolerance * std::max(std::abs(A.value[k]), std::abs(transposed)))
+      if(std::abs(A.value[k] - transposed) > relative_tolerance * std::max(std::abs(A.value[k]), std::abs(transposed)))
         return false;
     }
   return true;

@@ -167,13 +167,13 @@ public:
 
 private:
   std::size_t m_size = 0;
-  std::vector<Index> m_original_index;     // of each reduced unknown
-  std::vector<Index> m_eliminated_index;   // rows with only a diagonal entry
+  std::vector<Index> m_original_index;   // of each reduced unknown
+  std::vector<Index> m_eliminated_index; // rows with only a diagonal entry
   std::vector<double> m_eliminated_diagonal;
-  std::vector<double> m_row_sign;          // of each reduced row: -1 where the diagonal was negative
-  Compressed_row_matrix m_coupling;        // reduced rows x eliminated unknowns
+  std::vector<double> m_row_sign;   // of each reduced row: -1 where the diagonal was negative
+  Compressed_row_matrix m_coupling; // reduced rows x eliminated unknowns
   bool m_identity = false;
-  std::vector<double> m_known_values;      // of the eliminated unknowns, for the last right-hand side
+  std::vector<double> m_known_values; // of the eliminated unknowns, for the last right-hand side
 };
 
 } // namespace AMG

@@ -48,8 +48,8 @@ public:
       return true;
     const Compressed_row_matrix& R = m_matrix;
     Eigen::Map<const Eigen::SparseMatrix<double, Eigen::RowMajor, int>> map(
-      R.number_of_rows, R.number_of_columns, Index(R.number_of_nonzeros()),
-      R.row_start.data(), R.column.data(), R.value.data());
+        R.number_of_rows, R.number_of_columns, Index(R.number_of_nonzeros()), R.row_start.data(), R.column.data(),
+        R.value.data());
     const Eigen_matrix matrix = map;
     if(symmetric)
     {

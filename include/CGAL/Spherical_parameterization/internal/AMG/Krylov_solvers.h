@@ -52,7 +52,10 @@ inline double dot(const double* x, const double* y, Index n)
   return sum;
 }
 
-inline double norm(const double* x, Index n) { return std::sqrt(dot(x, x, n)); }
+inline double norm(const double* x, Index n)
+{
+  return std::sqrt(dot(x, x, n));
+}
 
 // target_residual_norm: absolute bound on ||b - A x||; x holds the initial guess.
 template <class Preconditioner>
@@ -123,9 +126,9 @@ Krylov_result conjugate_gradient(const Compressed_row_matrix& A, const double* b
 }
 
 template <class Preconditioner>
-Krylov_result bicgstab(const Compressed_row_matrix& A, const double* b, double* x,
-                       Preconditioner& apply_preconditioner, double target_residual_norm,
-                       double reference_norm, int max_iterations, Krylov_workspace& workspace)
+Krylov_result bicgstab(const Compressed_row_matrix& A, const double* b, double* x, Preconditioner& apply_preconditioner,
+                       double target_residual_norm, double reference_norm, int max_iterations,
+                       Krylov_workspace& workspace)
 {
   const Index n = A.number_of_rows;
   double* r = workspace.vector(0, n);
@@ -205,9 +208,8 @@ Krylov_result bicgstab(const Compressed_row_matrix& A, const double* b, double* 
 // Restarted GMRES(m) with right preconditioning and Givens rotations; one preconditioner application per
 // iteration plus one per restart (x += M^{-1} V y).
 template <class Preconditioner>
-Krylov_result gmres(const Compressed_row_matrix& A, const double* b, double* x,
-                    Preconditioner& apply_preconditioner, double target_residual_norm,
-                    double reference_norm, int max_iterations, int restart_length,
+Krylov_result gmres(const Compressed_row_matrix& A, const double* b, double* x, Preconditioner& apply_preconditioner,
+                    double target_residual_norm, double reference_norm, int max_iterations, int restart_length,
                     Krylov_workspace& workspace)
 {
   const Index n = A.number_of_rows;

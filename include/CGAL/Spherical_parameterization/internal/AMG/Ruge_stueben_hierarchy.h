@@ -43,8 +43,8 @@ struct Hierarchy_parameters
   bool operator==(const Hierarchy_parameters& o) const
   {
     return strength_threshold == o.strength_threshold && max_coarse_size == o.max_coarse_size
-        && max_levels == o.max_levels && pre_smoothing_sweeps == o.pre_smoothing_sweeps
-        && post_smoothing_sweeps == o.post_smoothing_sweeps;
+           && max_levels == o.max_levels && pre_smoothing_sweeps == o.pre_smoothing_sweeps
+           && post_smoothing_sweeps == o.post_smoothing_sweeps;
   }
   bool operator!=(const Hierarchy_parameters& o) const { return !(*this == o); }
 };
@@ -130,16 +130,21 @@ inline Compressed_row_pattern strength_of_connection(const Compressed_row_matrix
   return S;
 }
 
-enum Point_type : signed char { UNDECIDED = 0, COARSE_POINT = 1, FINE_POINT = -1 };
+enum Point_type : signed char
+{
+  UNDECIDED = 0,
+  COARSE_POINT = 1,
+  FINE_POINT = -1
+};
 
 // Buckets of undecided points keyed by their measure, with O(1) move and O(1) amortized max extraction.
 class Measure_buckets
 {
 public:
   Measure_buckets(Index number_of_points, Index largest_measure)
-    : m_head(std::size_t(largest_measure) + 1, -1), m_next(number_of_points, -1),
-      m_previous(number_of_points, -1), m_measure(number_of_points, 0), m_top(-1)
-  { }
+    : m_head(std::size_t(largest_measure) + 1, -1), m_next(number_of_points, -1), m_previous(number_of_points, -1),
+      m_measure(number_of_points, 0), m_top(-1)
+  {}
 
   void insert(Index i, Index measure)
   {
@@ -261,11 +266,10 @@ inline std::vector<signed char> split_coarse_fine(const Compressed_row_pattern& 
 }
 
 // Classical interpolation (Ruge-Stueben, with the usual sign modification):
-//   w_ij = -(a_ij + sum_{k in F_i^s} a_ik a_kj / sum_{m in C_i^s} a_km) / (a_ii + sum_{weak k} a_ik)
+//   w_ij = -(a_ij + m_sum{k in F_i^s} a_ik a_kj / m_sum{m in C_i^s} a_km) / (a_ii + m_sum{weak k} a_ik)
 // where only the entries a_km of sign opposite to a_kk are distributed; an F neighbour without such an entry
 // towards C_i^s is lumped onto the diagonal.
-inline Compressed_row_matrix classical_interpolation(const Compressed_row_matrix& A,
-                                                     const Compressed_row_pattern& S,
+inline Compressed_row_matrix classical_interpolation(const Compressed_row_matrix& A, const Compressed_row_pattern& S,
                                                      const std::vector<signed char>& type,
                                                      const std::vector<Index>& coarse_index,
                                                      Index number_of_coarse_points)
@@ -288,8 +292,8 @@ inline Compressed_row_matrix classical_interpolation(const Compressed_row_matrix
   P.column.resize(P.row_start.back());
   P.value.resize(P.row_start.back());
 
-  std::vector<Index> strong_row(n, -1);      // strong_row[j] == i  <=>  j in S_i
-  std::vector<Index> position_in_P(n, -1);   // where C point j sits in the current row of P, or < begin
+  std::vector<Index> strong_row(n, -1);    // strong_row[j] == i  <=>  j in S_i
+  std::vector<Index> position_in_P(n, -1); // where C point j sits in the current row of P, or < begin
   std::vector<double> diagonal(n, 0.);
   for(Index i = 0; i < n; ++i)
     for(Index k = A.row_start[i]; k < A.row_start[i + 1]; ++k)
@@ -479,7 +483,7 @@ public:
     std::size_t bytes = 0;
     for(const Level& l : m_levels)
       bytes += l.A.memory_bytes() + l.P.memory_bytes()
-             + sizeof(double) * (l.solution.capacity() + l.right_hand_side.capacity());
+               + sizeof(double) * (l.solution.capacity() + l.right_hand_side.capacity());
     return bytes;
   }
 
@@ -502,7 +506,7 @@ private:
       return m_dense_coarse_solver.rcond() > 1e-13;
     }
     Eigen::Map<const Eigen::SparseMatrix<double, Eigen::RowMajor, int>> map(
-      n, n, Index(A.number_of_nonzeros()), A.row_start.data(), A.column.data(), A.value.data());
+        n, n, Index(A.number_of_nonzeros()), A.row_start.data(), A.column.data(), A.value.data());
     Eigen_sparse matrix = map;
     m_sparse_coarse_solver = std::make_shared<Eigen::SparseLU<Eigen_sparse>>();
     m_sparse_coarse_solver->compute(matrix);
@@ -516,7 +520,7 @@ private:
     typedef Eigen::Matrix<double, Eigen::Dynamic, K, K == 1 ? Eigen::ColMajor : Eigen::RowMajor> Block;
     Eigen::Map<const Block> rhs(b, n, K);
     Eigen::Map<Block> solution(x, n, K);
-    const Eigen::Matrix<double, Eigen::Dynamic, K> columns = rhs;  // the solvers want column-major storage
+    const Eigen::Matrix<double, Eigen::Dynamic, K> columns = rhs; // the solvers want column-major storage
     Eigen::Matrix<double, Eigen::Dynamic, K> result;
     if(m_sparse_coarse_solver)
       result = m_sparse_coarse_solver->solve(columns);
@@ -604,7 +608,8 @@ private:
     for(int s = 0; s < m_parameters.pre_smoothing_sweeps; ++s)
       gauss_seidel<K, true>(level, b, x);
     restrict_residual<K>(level, b, x, coarse.right_hand_side.data());
-    std::fill(coarse.solution.begin(), coarse.solution.begin() + K * static_cast<std::size_t>(coarse.A.number_of_rows), 0.);
+    std::fill(coarse.solution.begin(), coarse.solution.begin() + K * static_cast<std::size_t>(coarse.A.number_of_rows),
+              0.);
     v_cycle<K>(l + 1, coarse.right_hand_side.data(), coarse.solution.data());
     interpolate_add<K>(level.P, coarse.solution.data(), x);
     for(int s = 0; s < m_parameters.post_smoothing_sweeps; ++s)

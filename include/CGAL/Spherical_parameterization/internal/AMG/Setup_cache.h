@@ -81,8 +81,8 @@ struct Setup_key
   bool operator==(const Setup_key& o) const
   {
     return matrix == o.matrix && hierarchy == o.hierarchy && symmetry_tolerance == o.symmetry_tolerance
-        && direct_solver_threshold == o.direct_solver_threshold
-        && direct_solver_threshold_non_symmetric == o.direct_solver_threshold_non_symmetric;
+           && direct_solver_threshold == o.direct_solver_threshold
+           && direct_solver_threshold_non_symmetric == o.direct_solver_threshold_non_symmetric;
   }
 };
 

@@ -47,111 +47,136 @@ namespace CGAL {
 namespace Spherical_parameterization {
 namespace internal {
 
-class Global_newton {
+class Global_newton
+{
 public:
   Global_newton(const Sphere_system& system, const Solver_tuning& tuning, bool preserve_bijectivity = true)
-    : system_(system), tuning_(tuning), preserve_bijectivity_(preserve_bijectivity),
-      marquardt_(tuning.marquardt_initial), damping_(tuning.cautious_damping) {}
+    : m_system(system), m_tuning(tuning), m_preserve_bijectivity(preserve_bijectivity),
+      m_marquardt(tuning.marquardt_initial), m_damping(tuning.cautious_damping)
+  {}
 
   // One Newton step; returns false when no acceptable step was found, or when `options` asked to stop in the middle
   // (then cancelled() is true).
   bool step(Sphere_state& state, double& residual, const Iteration_options* options = nullptr)
   {
-    cancelled_ = false;
-    const std::size_t n = system_.number_of_vertices;
+    m_cancelled = false;
+    const std::size_t n = m_system.number_of_vertices;
     const std::vector<Vector3>& x = state.positions();
-    t1_.resize(n);
-    t2_.resize(n);
-    for(std::size_t i = 0; i < n; ++i) tangent_frame(x[i], t1_[i], t2_[i]);
+    m_t1.resize(n);
+    m_t2.resize(n);
+    for(std::size_t i = 0; i < n; ++i)
+      tangent_frame(x[i], m_t1[i], m_t2[i]);
 
-    if(jacobian_.rows() != Eigen::Index(2 * n)) build_pattern();
+    if(m_jacobian.rows() != Eigen::Index(2 * n))
+      build_pattern();
     Eigen::VectorXd rhs(2 * n);
-    double* values = jacobian_.valuePtr();
-    for(std::size_t i = 0; i < n; ++i) {
-      const double scale = system_.row_sums[i];
+    double* values = m_jacobian.valuePtr();
+    for(std::size_t i = 0; i < n; ++i)
+    {
+      const double scale = m_system.row_sums[i];
       const Vector3 s = scale * state.sum(i);
       const double alpha = dot(x[i], s);
-      rhs[2 * i] = -dot(t1_[i], s);
-      rhs[2 * i + 1] = -dot(t2_[i], s);
-      const double diagonal = -alpha * (1. + damping_);
-      const std::array<std::size_t, 4>& d = diagonal_slots_[i];
+      rhs[2 * i] = -dot(m_t1[i], s);
+      rhs[2 * i + 1] = -dot(m_t2[i], s);
+      const double diagonal = -alpha * (1. + m_damping);
+      const std::array<std::size_t, 4>& d = m_diagonal_slots[i];
       values[d[0]] = diagonal;
       values[d[1]] = 0.;
       values[d[2]] = 0.;
       values[d[3]] = diagonal;
-      for(std::size_t k = system_.offsets[i]; k < system_.offsets[i + 1]; ++k) {
-        const std::size_t j = static_cast<std::size_t>(system_.neighbors[k]);
-        const double w = system_.weights[k] * scale;
-        const std::array<std::size_t, 4>& slot = block_slots_[k];
-        const std::array<double, 4> block = tangent_block(w, t1_[i], t2_[i], t1_[j], t2_[j]);
-        for(int b = 0; b < 4; ++b) values[slot[b]] = block[b];
+      for(std::size_t k = m_system.offsets[i]; k < m_system.offsets[i + 1]; ++k)
+      {
+        const std::size_t j = static_cast<std::size_t>(m_system.neighbors[k]);
+        const double w = m_system.weights[k] * scale;
+        const std::array<std::size_t, 4>& slot = m_block_slots[k];
+        const std::array<double, 4> block = tangent_block(w, m_t1[i], m_t2[i], m_t1[j], m_t2[j]);
+        for(int b = 0; b < 4; ++b)
+          values[slot[b]] = block[b];
       }
     }
-    const Eigen::SparseMatrix<double>& jacobian = jacobian_;
+    const Eigen::SparseMatrix<double>& jacobian = m_jacobian;
 
     // Symmetric weights: plain Newton. Otherwise the rotations are not an exact null space of the equations,
     // and Newton's step blows up along them: take Levenberg-Marquardt steps (J^T J + mu I) d = J^T rhs instead.
-    for(int attempt = 0; attempt < (system_.symmetric ? 1 : tuning_.marquardt_attempts); ++attempt) {
-      if(attempt > 0 && options != nullptr && options->cancel_requested()) { cancelled_ = true; return false; }
+    for(int attempt = 0; attempt < (m_system.symmetric ? 1 : m_tuning.marquardt_attempts); ++attempt)
+    {
+      if(attempt > 0 && options != nullptr && options->cancel_requested())
+      {
+        m_cancelled = true;
+        return false;
+      }
       Eigen::VectorXd delta;
-      if(system_.symmetric) {
-        if(!solve(jacobian, rhs, delta)) return false;
-      } else {
+      if(m_system.symmetric)
+      {
+        if(!solve(jacobian, rhs, delta))
+          return false;
+      }
+      else
+      {
         Eigen::SparseMatrix<double> normal = Eigen::SparseMatrix<double>(jacobian.transpose()) * jacobian;
-        const double shift = marquardt_ * normal.diagonal().mean();
-        for(int k = 0; k < normal.rows(); ++k) normal.coeffRef(k, k) += shift;
+        const double shift = m_marquardt * normal.diagonal().mean();
+        for(int k = 0; k < normal.rows(); ++k)
+          normal.coeffRef(k, k) += shift;
         // The pattern of J^T J is the same at every step: order it (METIS) once, factorize every time (ordering it
         // at every attempt was slow: the manual's Method section).
-        if(!ldlt_analyzed_ || normal.nonZeros() != analyzed_nonzeros_) {
-          const Deferred_stop_signals deferred;  // METIS orders the unknowns (see deferred_stop_signals.h)
-          ldlt_.analyzePattern(normal);
-          ldlt_analyzed_ = true;
-          analyzed_nonzeros_ = normal.nonZeros();
+        if(!m_ldlt_analyzed || normal.nonZeros() != m_analyzed_nonzeros)
+        {
+          const Deferred_stop_signals deferred; // METIS orders the unknowns (see deferred_stop_signals.h)
+          m_ldlt.analyzePattern(normal);
+          m_ldlt_analyzed = true;
+          m_analyzed_nonzeros = normal.nonZeros();
         }
-        ldlt_.factorize(normal);
-        if(ldlt_.info() != Eigen::Success) return false;
-        delta = ldlt_.solve(jacobian.transpose() * rhs);
-        if(!delta.allFinite()) return false;
+        m_ldlt.factorize(normal);
+        if(m_ldlt.info() != Eigen::Success)
+          return false;
+        delta = m_ldlt.solve(jacobian.transpose() * rhs);
+        if(!delta.allFinite())
+          return false;
       }
       double accepted_t = 0.;
-      if(try_step(state, residual, delta, accepted_t)) {
-        if(!system_.symmetric) marquardt_ = accepted_t == 1. ? std::max(marquardt_ / 3., 1e-12) : marquardt_ * 2.;
+      if(try_step(state, residual, delta, accepted_t))
+      {
+        if(!m_system.symmetric)
+          m_marquardt = accepted_t == 1. ? std::max(m_marquardt / 3., 1e-12) : m_marquardt * 2.;
         return true;
       }
-      marquardt_ = std::min(marquardt_ * 10., tuning_.marquardt_max);
+      m_marquardt = std::min(m_marquardt * 10., m_tuning.marquardt_max);
     }
     return false;
   }
 
-  bool cancelled() const { return cancelled_; }
+  bool cancelled() const { return m_cancelled; }
 
 private:
   // Line search along delta (halving t) for a point that keeps every positive face positive and lowers Res.
   bool try_step(Sphere_state& state, double& residual, const Eigen::VectorXd& delta, double& accepted_t)
   {
-    const std::size_t n = system_.number_of_vertices;
+    const std::size_t n = m_system.number_of_vertices;
     const std::vector<Vector3>& x = state.positions();
     std::vector<Vector3> displacement(n);
-    for(std::size_t i = 0; i < n; ++i) displacement[i] = delta[2 * i] * t1_[i] + delta[2 * i + 1] * t2_[i];
+    for(std::size_t i = 0; i < n; ++i)
+      displacement[i] = delta[2 * i] * m_t1[i] + delta[2 * i + 1] * m_t2[i];
     remove_rotation(x, displacement);
 
     std::vector<Vector3> trial(n);
     double trial_residual = 0.;
     accepted_t = backtracking_line_search(
-        tuning_.cautious_min_step,
+        m_tuning.cautious_min_step,
         [&](double t) {
-          for(std::size_t i = 0; i < n; ++i) {
+          for(std::size_t i = 0; i < n; ++i)
+          {
             Vector3 y = x[i] + t * displacement[i];
             trial[i] = y * (1. / length(y));
           }
-          return !preserve_bijectivity_ || state.keeps_positive_faces(trial);
+          return !m_preserve_bijectivity || state.keeps_positive_faces(trial);
         },
         [&](double) {
-          trial_residual = compute_residuals(system_, trial).paper;
+          trial_residual = compute_residuals(m_system, trial).paper;
           return trial_residual < residual;
         });
-    if(accepted_t == 0.) return false;
-    state.assign(trial, preserve_bijectivity_);
+    if(accepted_t == 0.)
+      return false;
+    state.assign(trial, m_preserve_bijectivity);
     residual = trial_residual;
     return true;
   }
@@ -162,7 +187,8 @@ private:
   {
     Eigen::Matrix3d normal = Eigen::Matrix3d::Zero();
     Eigen::Vector3d moment = Eigen::Vector3d::Zero();
-    for(std::size_t i = 0; i < x.size(); ++i) {
+    for(std::size_t i = 0; i < x.size(); ++i)
+    {
       const Eigen::Vector3d xi(x[i].x, x[i].y, x[i].z);
       normal += Eigen::Matrix3d::Identity() - xi * xi.transpose();
       const Vector3 m = cross(x[i], d[i]);
@@ -170,48 +196,53 @@ private:
     }
     const Eigen::Vector3d omega = normal.ldlt().solve(moment);
     const Vector3 w(omega[0], omega[1], omega[2]);
-    for(std::size_t i = 0; i < x.size(); ++i) d[i] -= cross(w, x[i]);
+    for(std::size_t i = 0; i < x.size(); ++i)
+      d[i] -= cross(w, x[i]);
   }
 
   bool solve(const Eigen::SparseMatrix<double>& jacobian, const Eigen::VectorXd& rhs, Eigen::VectorXd& delta)
   {
-    if(system_.symmetric) {
+    if(m_system.symmetric)
+    {
       // The pattern never changes: order and analyse once, factorize at every step.
-      if(!ldlt_analyzed_) {
-        const Deferred_stop_signals deferred;  // METIS orders the unknowns (see deferred_stop_signals.h)
-        ldlt_.analyzePattern(jacobian);
-        ldlt_analyzed_ = true;
+      if(!m_ldlt_analyzed)
+      {
+        const Deferred_stop_signals deferred; // METIS orders the unknowns (see deferred_stop_signals.h)
+        m_ldlt.analyzePattern(jacobian);
+        m_ldlt_analyzed = true;
       }
-      ldlt_.factorize(jacobian);
-      if(ldlt_.info() == Eigen::Success) {
-        delta = ldlt_.solve(rhs);
-        if(ldlt_.info() == Eigen::Success && delta.allFinite()) return true;
+      m_ldlt.factorize(jacobian);
+      if(m_ldlt.info() == Eigen::Success)
+      {
+        delta = m_ldlt.solve(rhs);
+        if(m_ldlt.info() == Eigen::Success && delta.allFinite())
+          return true;
       }
     }
-    lu_.compute(jacobian);
-    if(lu_.info() != Eigen::Success) return false;
-    delta = lu_.solve(rhs);
-    return lu_.info() == Eigen::Success && delta.allFinite();
+    m_lu.compute(jacobian);
+    if(m_lu.info() != Eigen::Success)
+      return false;
+    delta = m_lu.solve(rhs);
+    return m_lu.info() == Eigen::Success && delta.allFinite();
   }
 
   // The Jacobian's pattern (2x2 blocks of the vertex adjacency plus the diagonal) and, for every block, where its
   // four values sit in the compressed storage, so that each step writes values in place without sorting.
-  void build_pattern() { build_block_pattern(system_, jacobian_, diagonal_slots_, block_slots_); }
+  void build_pattern() { build_block_pattern(m_system, m_jacobian, m_diagonal_slots, m_block_slots); }
 
-
-  const Sphere_system& system_;
-  const Solver_tuning& tuning_;
-  bool preserve_bijectivity_;
-  Eigen::SparseMatrix<double> jacobian_;
-  std::vector<std::array<std::size_t, 4>> diagonal_slots_, block_slots_;
-  bool ldlt_analyzed_ = false;
-  bool cancelled_ = false;
-  Eigen::Index analyzed_nonzeros_ = 0;  // of the normal matrix J^T J (non-symmetric weights)
-  double marquardt_;  // relative Levenberg-Marquardt shift (non-symmetric weights)
-  double damping_;    // relative diagonal shift: keeps the rotations from blowing up the step
-  std::vector<Vector3> t1_, t2_;
-  Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>, Eigen::Lower, Eigen::MetisOrdering<int>> ldlt_;
-  Eigen::SparseLU<Eigen::SparseMatrix<double>, Eigen::COLAMDOrdering<int>> lu_;
+  const Sphere_system& m_system;
+  const Solver_tuning& m_tuning;
+  bool m_preserve_bijectivity;
+  Eigen::SparseMatrix<double> m_jacobian;
+  std::vector<std::array<std::size_t, 4>> m_diagonal_slots, m_block_slots;
+  bool m_ldlt_analyzed = false;
+  bool m_cancelled = false;
+  Eigen::Index m_analyzed_nonzeros = 0; // of the normal matrix J^T J (non-symmetric weights)
+  double m_marquardt;                   // relative Levenberg-Marquardt shift (non-symmetric weights)
+  double m_damping;                     // relative diagonal shift: keeps the rotations from blowing up the step
+  std::vector<Vector3> m_t1, m_t2;
+  Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>, Eigen::Lower, Eigen::MetisOrdering<int>> m_ldlt;
+  Eigen::SparseLU<Eigen::SparseMatrix<double>, Eigen::COLAMDOrdering<int>> m_lu;
 };
 
 // Cautious global Newton steps until the convergence test holds; a batch of local Newton sweeps whenever no
@@ -219,7 +250,8 @@ private:
 // Stagnation: non-symmetric weights (mean value) generally admit no exact solution, because the three torque
 // identities that make the equations consistent for symmetric weights fail; the residual then levels off at a
 // least-squares floor (tuning.cautious_stagnation_window).
-inline Iteration_report cautious_newton(Sphere_state& state, const Iteration_options& options, const CGAL::Real_timer& clock)
+inline Iteration_report cautious_newton(Sphere_state& state, const Iteration_options& options,
+                                        const CGAL::Real_timer& clock)
 {
   const Solver_tuning& tuning = options.tuning;
   Iteration_driver driver(state, options, clock, "global newton", options.max_newton_sweeps);
@@ -228,30 +260,41 @@ inline Iteration_report cautious_newton(Sphere_state& state, const Iteration_opt
   state.refresh_sums();
   double residual = driver.measure().residual;
   driver.keep_best_iterate();
-  while(driver.may_start()) {
-    if(!newton.step(state, residual, &options)) {
-      if(newton.cancelled()) { driver.report().cancelled = true; break; }
+  while(driver.may_start())
+  {
+    if(!newton.step(state, residual, &options))
+    {
+      if(newton.cancelled())
+      {
+        driver.report().cancelled = true;
+        break;
+      }
       // No global step helps: relax locally for a while.
       for(int sweep = 0; sweep < tuning.cautious_local_sweeps_without_step; ++sweep)
         for(std::size_t i = 0; i < state.system().number_of_vertices; ++i)
-          if(!local_newton_step(state, i, options.preserve_bijectivity)) ++driver.report().rejected_moves;
+          if(!local_newton_step(state, i, options.preserve_bijectivity))
+            ++driver.report().rejected_moves;
       state.refresh_sums();
       residual = driver.measure().residual;
     }
-    if(!driver.end_iteration()) break;
+    if(!driver.end_iteration())
+      break;
   }
-  if(!driver.converged()) driver.restore_best();
+  if(!driver.converged())
+    driver.restore_best();
   return driver.finish();
 }
 
 // True when every raw weight is the same (Tutte's weights, up to a factor).
 inline bool has_tutte_weights(const Sphere_system& system)
 {
-  if(system.weights.empty()) return true;
+  if(system.weights.empty())
+    return true;
   const double first = system.weights[0] * system.row_sums[0];
   for(std::size_t i = 0; i < system.number_of_vertices; ++i)
     for(std::size_t k = system.offsets[i]; k < system.offsets[i + 1]; ++k)
-      if(std::abs(system.weights[k] * system.row_sums[i] - first) > 1e-12 * std::abs(first)) return false;
+      if(std::abs(system.weights[k] * system.row_sums[i] - first) > 1e-12 * std::abs(first))
+        return false;
   return true;
 }
 
@@ -259,15 +302,18 @@ inline bool has_tutte_weights(const Sphere_system& system)
 // from the same map with the line search on the scale-free imbalances instead of Res (see Step_merit: Res led
 // some steps along the boosts towards a collapse). The first phase from the two-disk guess and on each multilevel
 // level (`boost_aim`: Boost_aim::ROOT there). The reports of both attempts are added up.
-inline Iteration_report full_newton_steps(Sphere_state& state, const Iteration_options& options, const CGAL::Real_timer& clock,
-                                          Boost_aim boost_aim = Boost_aim::MAXIMUM)
+inline Iteration_report full_newton_steps(Sphere_state& state, const Iteration_options& options,
+                                          const CGAL::Real_timer& clock, Boost_aim boost_aim = Boost_aim::MAXIMUM)
 {
   const std::vector<Vector3> start = state.positions();
-  Iteration_report report = mobius_newton(state, options, clock, nullptr, options.tuning.free_newton_patience, true, Step_merit::RESIDUAL, boost_aim);
-  if(report.converged || report.cancelled || report.out_of_time) return report;
+  Iteration_report report = mobius_newton(state, options, clock, nullptr, options.tuning.free_newton_patience, true,
+                                          Step_merit::RESIDUAL, boost_aim);
+  if(report.converged || report.cancelled || report.out_of_time)
+    return report;
   state.assign(start);
   const Iteration_report first = report;
-  report = mobius_newton(state, options, clock, nullptr, options.tuning.free_newton_patience, true, Step_merit::IMBALANCE, boost_aim);
+  report = mobius_newton(state, options, clock, nullptr, options.tuning.free_newton_patience, true,
+                         Step_merit::IMBALANCE, boost_aim);
   report.sweeps += first.sweeps;
   report.linear_iterations += first.linear_iterations;
   return report;
@@ -277,18 +323,23 @@ inline Iteration_report full_newton_steps(Sphere_state& state, const Iteration_o
 // imbalances in their own scale, after at most 50 cautious Newton steps where the map has non-positive faces (they
 // start from a bijective map). With the paper's criterion (Res, whose least-squares problem the collapse solves), the
 // cautious Newton alone, as the paper's test asks.
-inline Iteration_report least_squares_newton(Sphere_state& state, const Iteration_options& options, const CGAL::Real_timer& clock)
+inline Iteration_report least_squares_newton(Sphere_state& state, const Iteration_options& options,
+                                             const CGAL::Real_timer& clock)
 {
-  if(options.convergence_test == Convergence_test::PAPER_RESIDUAL) return cautious_newton(state, options, clock);
+  if(options.convergence_test == Convergence_test::PAPER_RESIDUAL)
+    return cautious_newton(state, options, clock);
   Iteration_report report;
-  if(state.invalid_faces() != 0) {
+  if(state.invalid_faces() != 0)
+  {
     Iteration_options repair = options;
     repair.max_newton_sweeps = std::min<std::size_t>(options.max_newton_sweeps, 50);
     report = cautious_newton(state, repair, clock);
-    if(report.converged || report.cancelled || report.out_of_time) return report;
+    if(report.converged || report.cancelled || report.out_of_time)
+      return report;
   }
   Iteration_options remaining = options;
-  remaining.max_newton_sweeps = options.max_newton_sweeps > report.sweeps ? options.max_newton_sweeps - report.sweeps : 0;
+  remaining.max_newton_sweeps =
+      options.max_newton_sweeps > report.sweeps ? options.max_newton_sweeps - report.sweeps : 0;
   const Least_squares_report least_squares = imbalance_least_squares(state, remaining, clock);
   report.sweeps += least_squares.steps;
   report.cancelled = least_squares.cancelled;
@@ -303,26 +354,35 @@ inline Iteration_report least_squares_newton(Sphere_state& state, const Iteratio
 // Stage 3. Symmetric weights: Newton's steps through folds, then the bijectivity-preserving Moebius-aware Newton; if it gives up and the weights are not Tutte's, the
 // continuation from Tutte's weights; if that fails too, the cautious Newton from the best iterate so far.
 // Non-symmetric weights: least_squares_newton().
-inline Iteration_report global_newton(Sphere_state& state, const Iteration_options& options, const CGAL::Real_timer& clock,
+inline Iteration_report global_newton(Sphere_state& state, const Iteration_options& options,
+                                      const CGAL::Real_timer& clock,
                                       const std::vector<Vector3>* initial_guess = nullptr)
 {
   const Sphere_system& system = state.system();
-  if(!system.symmetric) return least_squares_newton(state, options, clock);
+  if(!system.symmetric)
+    return least_squares_newton(state, options, clock);
   // Full Newton steps through folds first: on most meshes the fastest way to the balanced map.
   Mobius_newton_statistics statistics;
-  Iteration_report free_steps = mobius_newton(state, options, clock, &statistics, options.tuning.free_newton_patience, true);
-  if(free_steps.converged || free_steps.cancelled || free_steps.out_of_time) return free_steps;
+  Iteration_report free_steps =
+      mobius_newton(state, options, clock, &statistics, options.tuning.free_newton_patience, true);
+  if(free_steps.converged || free_steps.cancelled || free_steps.out_of_time)
+    return free_steps;
   // Otherwise from where it started (restored: its best iterate has the fewest non-positive faces), with every step
   // keeping every positive triangle positive.
   Iteration_options remaining_options = options;
-  remaining_options.max_newton_sweeps = options.max_newton_sweeps > free_steps.sweeps ? options.max_newton_sweeps - free_steps.sweeps : 0;
-  Iteration_report report = mobius_newton(state, remaining_options, clock, &statistics, options.tuning.cautious_patience);
+  remaining_options.max_newton_sweeps =
+      options.max_newton_sweeps > free_steps.sweeps ? options.max_newton_sweeps - free_steps.sweeps : 0;
+  Iteration_report report =
+      mobius_newton(state, remaining_options, clock, &statistics, options.tuning.cautious_patience);
   report.sweeps += free_steps.sweeps;
   report.linear_iterations += free_steps.linear_iterations;
-  if(!statistics.gave_up) return report;
-  if(!has_tutte_weights(system)) {
+  if(!statistics.gave_up)
+    return report;
+  if(!has_tutte_weights(system))
+  {
     const std::vector<Vector3> start = state.positions();
-    const Continuation_report continuation = weight_continuation(system, state.positions(), options, clock, initial_guess);
+    const Continuation_report continuation =
+        weight_continuation(system, state.positions(), options, clock, initial_guess);
     state.assign(state.positions());
     report.sweeps += continuation.newton_steps;
     report.continuation_parameter = continuation.last_parameter;
@@ -334,21 +394,33 @@ inline Iteration_report global_newton(Sphere_state& state, const Iteration_optio
       report.stagnated = false;
       return report.converged;
     };
-    if(continuation.reached && passes_the_test()) return report;
-    if(continuation.cancelled) { report.cancelled = true; return report; }
+    if(continuation.reached && passes_the_test())
+      return report;
+    if(continuation.cancelled)
+    {
+      report.cancelled = true;
+      return report;
+    }
     // Where the path ends, the interior-point iterations (constrained_balance.h) continue towards the target
     // weights' balanced map, every iterate bijective.
     const Constrained_balance_report barrier = constrained_balance(state, options, clock);
     report.sweeps += barrier.newton_steps;
-    if(barrier.reached && passes_the_test()) return report;
-    if(barrier.cancelled) { report.cancelled = true; return report; }
+    if(barrier.reached && passes_the_test())
+      return report;
+    if(barrier.cancelled)
+    {
+      report.cancelled = true;
+      return report;
+    }
     // The cautious Newton goes on from the better of the two maps (lower root mean square imbalance, the best
     // iterate's rule) and returns its best iterate, so the result is never worse than either. Where the barrier's
     // steps stall before the tolerance, its map is usually the better one by far (the manual's Method section).
-    if(!(imbalance_merit(system, state.positions()) < imbalance_merit(system, start))) state.assign(start);
+    if(!(imbalance_merit(system, state.positions()) < imbalance_merit(system, start)))
+      state.assign(start);
   }
   Iteration_options remaining = options;
-  remaining.max_newton_sweeps = options.max_newton_sweeps > report.sweeps ? options.max_newton_sweeps - report.sweeps : 0;
+  remaining.max_newton_sweeps =
+      options.max_newton_sweeps > report.sweeps ? options.max_newton_sweeps - report.sweeps : 0;
   Iteration_report cautious = cautious_newton(state, remaining, clock);
   cautious.sweeps += report.sweeps;
   cautious.rejected_moves += report.rejected_moves;

@@ -24,7 +24,7 @@
 // Every step is a descent step of one function, so the iterations cannot cycle.
 //
 // Stationarity, in the scale of the imbalance: sigma_k = |grad_k Phi_mu| / S_k with S_k = |alpha_k| / l_k +
-// sum_{j: k in N(j)} |w_jk| / l_j, the size of grad_k Psi if every r_i of its terms had length 1.
+// m_sum{j: k in N(j)} |w_jk| / l_j, the size of grad_k Psi if every r_i of its terms had length 1.
 
 #ifndef CGAL_SPHERICAL_PARAMETERIZATION_INTERNAL_STAGE3_IMBALANCE_LEAST_SQUARES_H
 #define CGAL_SPHERICAL_PARAMETERIZATION_INTERNAL_STAGE3_IMBALANCE_LEAST_SQUARES_H
@@ -52,25 +52,32 @@ namespace CGAL {
 namespace Spherical_parameterization {
 namespace internal {
 
-class Imbalance_least_squares {
+class Imbalance_least_squares
+{
 public:
-  explicit Imbalance_least_squares(const Sphere_system& system) : system_(system) {}
+  explicit Imbalance_least_squares(const Sphere_system& system) : m_system(system) {}
 
   // Phi_mu at x; +infinity when a face is not positive and mu > 0. Keeps the per-vertex terms of x.
   double evaluate(const std::vector<Vector3>& x, double mu)
   {
-    compute_least_squares_terms(system_, x, terms_);
+    compute_least_squares_terms(m_system, x, m_terms);
     double psi = 0.;
-    for(std::size_t i = 0; i < system_.number_of_vertices; ++i) {
-      const double l = terms_.scale[i];
-      if(l > 0.) psi += 0.5 * squared_length(terms_.force[i]) / (l * l);
+    for(std::size_t i = 0; i < m_system.number_of_vertices; ++i)
+    {
+      const double l = m_terms.scale[i];
+      if(l > 0.)
+        psi += 0.5 * squared_length(m_terms.force[i]) / (l * l);
     }
-    if(mu > 0.) {
-      for(std::size_t f = 0; f < system_.triangles.size(); ++f) {
-        const auto& t = system_.triangles[f];
-        const double det = face_determinant(x[static_cast<std::size_t>(t[0])], x[static_cast<std::size_t>(t[1])], x[static_cast<std::size_t>(t[2])]);
-        if(!(det > 0.)) return HUGE_VAL;
-        psi -= mu * face_scale_[f] * std::log(det);
+    if(mu > 0.)
+    {
+      for(std::size_t f = 0; f < m_system.triangles.size(); ++f)
+      {
+        const auto& t = m_system.triangles[f];
+        const double det = face_determinant(x[static_cast<std::size_t>(t[0])], x[static_cast<std::size_t>(t[1])],
+                                            x[static_cast<std::size_t>(t[2])]);
+        if(!(det > 0.))
+          return HUGE_VAL;
+        psi -= mu * m_face_scale[f] * std::log(det);
       }
     }
     return psi;
@@ -78,71 +85,87 @@ public:
 
   // After evaluate(x, 0): c_f such that the face's barrier force at each of its vertices k is at most mu S_k now
   // (thin triangles and slivers: with c_f = 1 their barrier force was 1e5 times the imbalance's scale).
-  void set_face_scales(const std::vector<Vector3>& x) { face_scale_ = barrier_face_scales(system_, x, stationarity_scales()); }
+  void set_face_scales(const std::vector<Vector3>& x)
+  {
+    m_face_scale = barrier_face_scales(m_system, x, stationarity_scales());
+  }
 
   // S_k for every vertex (after evaluate()): see stationarity_size().
   std::vector<double> stationarity_scales() const
   {
-    std::vector<double> size(system_.number_of_vertices);
-    for(std::size_t k = 0; k < size.size(); ++k) size[k] = stationarity_size(system_, terms_, k);
+    std::vector<double> size(m_system.number_of_vertices);
+    for(std::size_t k = 0; k < size.size(); ++k)
+      size[k] = stationarity_size(m_system, m_terms, k);
     return size;
   }
 
   // After evaluate(x, mu): the Jacobian of the r_i and the gradient of Phi_mu in tangent coordinates.
   void linearize(const std::vector<Vector3>& x, double mu)
   {
-    const std::size_t n = system_.number_of_vertices;
-    t1_.resize(n);
-    t2_.resize(n);
-    for(std::size_t i = 0; i < n; ++i) tangent_frame(x[i], t1_[i], t2_[i]);
-    if(jacobian_.rows() != Eigen::Index(2 * n)) build_pattern();
-    residual_.resize(static_cast<Eigen::Index>(2 * n));
-    double* values = jacobian_.valuePtr();
-    for(std::size_t i = 0; i < n; ++i) {
-      const double l = terms_.scale[i];
-      const std::array<std::size_t, 4>& diagonal = diagonal_slots_[i];
-      if(!(l > 0.)) {
-        residual_[Eigen::Index(2 * i)] = residual_[Eigen::Index(2 * i + 1)] = 0.;
-        for(int b = 0; b < 4; ++b) values[diagonal[b]] = 0.;
-        for(std::size_t k = system_.offsets[i]; k < system_.offsets[i + 1]; ++k)
-          for(int b = 0; b < 4; ++b) values[block_slots_[k][b]] = 0.;
+    const std::size_t n = m_system.number_of_vertices;
+    m_t1.resize(n);
+    m_t2.resize(n);
+    for(std::size_t i = 0; i < n; ++i)
+      tangent_frame(x[i], m_t1[i], m_t2[i]);
+    if(m_jacobian.rows() != Eigen::Index(2 * n))
+      build_pattern();
+    m_residual.resize(static_cast<Eigen::Index>(2 * n));
+    double* values = m_jacobian.valuePtr();
+    for(std::size_t i = 0; i < n; ++i)
+    {
+      const double l = m_terms.scale[i];
+      const std::array<std::size_t, 4>& diagonal = m_diagonal_slots[i];
+      if(!(l > 0.))
+      {
+        m_residual[Eigen::Index(2 * i)] = m_residual[Eigen::Index(2 * i + 1)] = 0.;
+        for(int b = 0; b < 4; ++b)
+          values[diagonal[b]] = 0.;
+        for(std::size_t k = m_system.offsets[i]; k < m_system.offsets[i + 1]; ++k)
+          for(int b = 0; b < 4; ++b)
+            values[m_block_slots[k][b]] = 0.;
         continue;
       }
-      const double f[2] = {dot(t1_[i], terms_.force[i]) / l, dot(t2_[i], terms_.force[i]) / l};  // r_i in the frame
-      residual_[Eigen::Index(2 * i)] = f[0];
-      residual_[Eigen::Index(2 * i + 1)] = f[1];
+      const double f[2] = {dot(m_t1[i], m_terms.force[i]) / l, dot(m_t2[i], m_terms.force[i]) / l}; // r_i in the frame
+      m_residual[Eigen::Index(2 * i)] = f[0];
+      m_residual[Eigen::Index(2 * i + 1)] = f[1];
       // d r_i / d x_i = -alpha_i / l_i I + r_i (T_i^T U_i)^T / l_i, U_i = sum_j |w_ij| s'(c_ij) (x_j - x_i) / c_ij.
-      const double u[2] = {dot(t1_[i], terms_.pull[i]) / l, dot(t2_[i], terms_.pull[i]) / l};
-      values[diagonal[0]] = -terms_.alpha[i] / l + f[0] * u[0];
+      const double u[2] = {dot(m_t1[i], m_terms.pull[i]) / l, dot(m_t2[i], m_terms.pull[i]) / l};
+      values[diagonal[0]] = -m_terms.alpha[i] / l + f[0] * u[0];
       values[diagonal[1]] = f[0] * u[1];
       values[diagonal[2]] = f[1] * u[0];
-      values[diagonal[3]] = -terms_.alpha[i] / l + f[1] * u[1];
+      values[diagonal[3]] = -m_terms.alpha[i] / l + f[1] * u[1];
       // d r_i / d x_j = w_ij / l_i T_i^T T_j - |w_ij| s'(c_ij) r_i (T_j^T u_ij)^T / l_i, u_ij the unit edge vector.
-      for(std::size_t k = system_.offsets[i]; k < system_.offsets[i + 1]; ++k) {
-        const std::size_t j = static_cast<std::size_t>(system_.neighbors[k]);
-        const double w = system_.weights[k];
+      for(std::size_t k = m_system.offsets[i]; k < m_system.offsets[i + 1]; ++k)
+      {
+        const std::size_t j = static_cast<std::size_t>(m_system.neighbors[k]);
+        const double w = m_system.weights[k];
         const Vector3 e = x[j] - x[i];
         const double length_e = length(e);
-        const double v[2] = {length_e > 0. ? dot(t1_[j], e) / length_e : 0., length_e > 0. ? dot(t2_[j], e) / length_e : 0.};
-        const std::array<std::size_t, 4>& slot = block_slots_[k];
+        const double v[2] = {length_e > 0. ? dot(m_t1[j], e) / length_e : 0.,
+                             length_e > 0. ? dot(m_t2[j], e) / length_e : 0.};
+        const std::array<std::size_t, 4>& slot = m_block_slots[k];
         const double c = std::abs(w) * tangential_edge_length_derivative(length_e, tangential_edge_length(x[i], e)) / l;
-        values[slot[0]] = w / l * dot(t1_[i], t1_[j]) - c * f[0] * v[0];
-        values[slot[1]] = w / l * dot(t1_[i], t2_[j]) - c * f[0] * v[1];
-        values[slot[2]] = w / l * dot(t2_[i], t1_[j]) - c * f[1] * v[0];
-        values[slot[3]] = w / l * dot(t2_[i], t2_[j]) - c * f[1] * v[1];
+        values[slot[0]] = w / l * dot(m_t1[i], m_t1[j]) - c * f[0] * v[0];
+        values[slot[1]] = w / l * dot(m_t1[i], m_t2[j]) - c * f[0] * v[1];
+        values[slot[2]] = w / l * dot(m_t2[i], m_t1[j]) - c * f[1] * v[0];
+        values[slot[3]] = w / l * dot(m_t2[i], m_t2[j]) - c * f[1] * v[1];
       }
     }
-    gradient_ = jacobian_.transpose() * residual_;
-    if(mu > 0.) {
-      for(std::size_t f = 0; f < system_.triangles.size(); ++f) {
-        const auto& t = system_.triangles[f];
-        const Vector3 p[3] = {x[static_cast<std::size_t>(t[0])], x[static_cast<std::size_t>(t[1])], x[static_cast<std::size_t>(t[2])]};
-        const double factor = mu * face_scale_[f] / face_determinant(p[0], p[1], p[2]);
-        for(int k = 0; k < 3; ++k) {
+    m_gradient = m_jacobian.transpose() * m_residual;
+    if(mu > 0.)
+    {
+      for(std::size_t f = 0; f < m_system.triangles.size(); ++f)
+      {
+        const auto& t = m_system.triangles[f];
+        const Vector3 p[3] = {x[static_cast<std::size_t>(t[0])], x[static_cast<std::size_t>(t[1])],
+                              x[static_cast<std::size_t>(t[2])]};
+        const double factor = mu * m_face_scale[f] / face_determinant(p[0], p[1], p[2]);
+        for(int k = 0; k < 3; ++k)
+        {
           const std::size_t v = static_cast<std::size_t>(t[k]);
           const Vector3 g = determinant_gradient(p[k], p[(k + 1) % 3], p[(k + 2) % 3]);
-          gradient_[Eigen::Index(2 * v)] -= factor * dot(t1_[v], g);
-          gradient_[Eigen::Index(2 * v + 1)] -= factor * dot(t2_[v], g);
+          m_gradient[Eigen::Index(2 * v)] -= factor * dot(m_t1[v], g);
+          m_gradient[Eigen::Index(2 * v + 1)] -= factor * dot(m_t2[v], g);
         }
       }
     }
@@ -151,8 +174,8 @@ public:
   // sigma_k for every vertex against `tolerance` (after linearize()), each with its rounding floor.
   Imbalance_summary stationarity(double tolerance) const
   {
-    return summarize_stationarity(system_, terms_, tolerance, [&](std::size_t k) {
-      return std::hypot(gradient_[Eigen::Index(2 * k)], gradient_[Eigen::Index(2 * k + 1)]);
+    return summarize_stationarity(m_system, m_terms, tolerance, [&](std::size_t k) {
+      return std::hypot(m_gradient[Eigen::Index(2 * k)], m_gradient[Eigen::Index(2 * k + 1)]);
     });
   }
 
@@ -164,79 +187,102 @@ public:
   // J_e d = -(r - P_L r), and d without its rotation part, is the least-squares step.
   bool gauss_newton_step(const std::vector<Vector3>& x, std::vector<Vector3>& d)
   {
-    const std::size_t n = system_.number_of_vertices;
+    const std::size_t n = m_system.number_of_vertices;
     const Eigen::Index m = Eigen::Index(2 * n);
-    Eigen::SparseMatrix<double> shifted = jacobian_;
+    Eigen::SparseMatrix<double> shifted = m_jacobian;
     double largest = 0.;
-    for(Eigen::Index k = 0; k < m; ++k) largest = std::max(largest, std::abs(shifted.coeff(k, k)));
-    for(Eigen::Index k = 0; k < m; ++k) shifted.coeffRef(k, k) += 1e-10 * largest;
-    if(!lu_analyzed_) {
-      lu_.analyzePattern(shifted);
-      lu_analyzed_ = true;
+    for(Eigen::Index k = 0; k < m; ++k)
+      largest = std::max(largest, std::abs(shifted.coeff(k, k)));
+    for(Eigen::Index k = 0; k < m; ++k)
+      shifted.coeffRef(k, k) += 1e-10 * largest;
+    if(!m_lu_analyzed)
+    {
+      m_lu.analyzePattern(shifted);
+      m_lu_analyzed = true;
     }
-    lu_.factorize(shifted);
-    if(lu_.info() != Eigen::Success) return false;
+    m_lu.factorize(shifted);
+    if(m_lu.info() != Eigen::Success)
+      return false;
     Eigen::VectorXd rotations[3], basis[3];
-    for(int axis = 0; axis < 3; ++axis) {
+    for(int axis = 0; axis < 3; ++axis)
+    {
       rotations[axis].resize(m);
       Vector3 omega;
       (axis == 0 ? omega.x : axis == 1 ? omega.y : omega.z) = 1.;
-      for(std::size_t i = 0; i < n; ++i) {
+      for(std::size_t i = 0; i < n; ++i)
+      {
         const Vector3 rotation = cross(omega, x[i]);
-        rotations[axis][Eigen::Index(2 * i)] = dot(t1_[i], rotation);
-        rotations[axis][Eigen::Index(2 * i + 1)] = dot(t2_[i], rotation);
+        rotations[axis][Eigen::Index(2 * i)] = dot(m_t1[i], rotation);
+        rotations[axis][Eigen::Index(2 * i + 1)] = dot(m_t2[i], rotation);
       }
     }
     auto orthonormalize = [](Eigen::VectorXd* vectors) {
-      for(int k = 0; k < 3; ++k) {
-        for(int previous = 0; previous < k; ++previous) vectors[k] -= vectors[previous].dot(vectors[k]) * vectors[previous];
+      for(int k = 0; k < 3; ++k)
+      {
+        for(int previous = 0; previous < k; ++previous)
+          vectors[k] -= vectors[previous].dot(vectors[k]) * vectors[previous];
         const double norm = vectors[k].norm();
-        if(!(norm > 0.) || !vectors[k].allFinite()) return false;
+        if(!(norm > 0.) || !vectors[k].allFinite())
+          return false;
         vectors[k] /= norm;
       }
       return true;
     };
-    for(int k = 0; k < 3; ++k) basis[k] = rotations[k];
-    for(int iteration = 0; iteration < 2; ++iteration) {
-      if(!orthonormalize(basis)) return false;
-      for(int k = 0; k < 3; ++k) basis[k] = lu_.transpose().solve(basis[k]);
+    for(int k = 0; k < 3; ++k)
+      basis[k] = rotations[k];
+    for(int iteration = 0; iteration < 2; ++iteration)
+    {
+      if(!orthonormalize(basis))
+        return false;
+      for(int k = 0; k < 3; ++k)
+        basis[k] = m_lu.transpose().solve(basis[k]);
     }
-    if(!orthonormalize(basis) || !orthonormalize(rotations)) return false;
-    Eigen::VectorXd rhs = -residual_;
-    for(int k = 0; k < 3; ++k) rhs -= basis[k].dot(rhs) * basis[k];
-    Eigen::VectorXd delta = lu_.solve(rhs);
-    for(int k = 0; k < 3; ++k) delta -= rotations[k].dot(delta) * rotations[k];
-    if(!delta.allFinite()) return false;
+    if(!orthonormalize(basis) || !orthonormalize(rotations))
+      return false;
+    Eigen::VectorXd rhs = -m_residual;
+    for(int k = 0; k < 3; ++k)
+      rhs -= basis[k].dot(rhs) * basis[k];
+    Eigen::VectorXd delta = m_lu.solve(rhs);
+    for(int k = 0; k < 3; ++k)
+      delta -= rotations[k].dot(delta) * rotations[k];
+    if(!delta.allFinite())
+      return false;
     d.resize(n);
     for(std::size_t i = 0; i < n; ++i)
-      d[i] = delta[Eigen::Index(2 * i)] * t1_[i] + delta[Eigen::Index(2 * i + 1)] * t2_[i];
-    slope_ = gradient_.dot(delta);
-    return slope_ < 0.;
+      d[i] = delta[Eigen::Index(2 * i)] * m_t1[i] + delta[Eigen::Index(2 * i + 1)] * m_t2[i];
+    m_slope = m_gradient.dot(delta);
+    return m_slope < 0.;
   }
 
   // The Gauss-Newton step with the relative Marquardt shift `lambda` (after linearize()), as tangent vectors.
   bool step(const std::vector<Vector3>& x, double mu, double lambda, std::vector<Vector3>& d)
   {
-    const std::size_t n = system_.number_of_vertices;
-    Eigen::SparseMatrix<double> normal = Eigen::SparseMatrix<double>(jacobian_.transpose()) * jacobian_;
-    if(mu > 0.) {
+    const std::size_t n = m_system.number_of_vertices;
+    Eigen::SparseMatrix<double> normal = Eigen::SparseMatrix<double>(m_jacobian.transpose()) * m_jacobian;
+    if(mu > 0.)
+    {
       // The barrier's positive part: mu b_f b_f^T / det_f^2 (its curvature part is left out: the matrix stays
       // positive definite, so the step is a descent direction).
-      for(std::size_t f = 0; f < system_.triangles.size(); ++f) {
-        const auto& t = system_.triangles[f];
-        const Vector3 p[3] = {x[static_cast<std::size_t>(t[0])], x[static_cast<std::size_t>(t[1])], x[static_cast<std::size_t>(t[2])]};
+      for(std::size_t f = 0; f < m_system.triangles.size(); ++f)
+      {
+        const auto& t = m_system.triangles[f];
+        const Vector3 p[3] = {x[static_cast<std::size_t>(t[0])], x[static_cast<std::size_t>(t[1])],
+                              x[static_cast<std::size_t>(t[2])]};
         const double det = face_determinant(p[0], p[1], p[2]);
-        const double weight = mu * face_scale_[f];
-        if(!(weight > 0.)) continue;
+        const double weight = mu * m_face_scale[f];
+        if(!(weight > 0.))
+          continue;
         double b[6];
-        for(int k = 0; k < 3; ++k) {
+        for(int k = 0; k < 3; ++k)
+        {
           const std::size_t v = static_cast<std::size_t>(t[k]);
           const Vector3 g = determinant_gradient(p[k], p[(k + 1) % 3], p[(k + 2) % 3]);
-          b[2 * k] = dot(t1_[v], g) / det;
-          b[2 * k + 1] = dot(t2_[v], g) / det;
+          b[2 * k] = dot(m_t1[v], g) / det;
+          b[2 * k + 1] = dot(m_t2[v], g) / det;
         }
         for(int r = 0; r < 6; ++r)
-          for(int s = 0; s < 6; ++s) {
+          for(int s = 0; s < 6; ++s)
+          {
             const Eigen::Index row = Eigen::Index(2 * static_cast<std::size_t>(t[r / 2]) + std::size_t(r % 2));
             const Eigen::Index column = Eigen::Index(2 * static_cast<std::size_t>(t[s / 2]) + std::size_t(s % 2));
             normal.coeffRef(row, column) += weight * b[r] * b[s];
@@ -244,57 +290,62 @@ public:
       }
     }
     double mean_diagonal = 0.;
-    for(Eigen::Index k = 0; k < normal.rows(); ++k) mean_diagonal += normal.coeff(k, k);
+    for(Eigen::Index k = 0; k < normal.rows(); ++k)
+      mean_diagonal += normal.coeff(k, k);
     mean_diagonal /= double(std::max<Eigen::Index>(normal.rows(), 1));
-    for(Eigen::Index k = 0; k < normal.rows(); ++k) normal.coeffRef(k, k) += lambda * normal.coeff(k, k) + 1e-12 * mean_diagonal;
-    if(!analyzed_ || normal.nonZeros() != analyzed_nonzeros_) {
-      const Deferred_stop_signals deferred;  // METIS orders the unknowns (see deferred_stop_signals.h)
-      ldlt_.analyzePattern(normal);
-      analyzed_ = true;
-      analyzed_nonzeros_ = normal.nonZeros();
+    for(Eigen::Index k = 0; k < normal.rows(); ++k)
+      normal.coeffRef(k, k) += lambda * normal.coeff(k, k) + 1e-12 * mean_diagonal;
+    if(!m_analyzed || normal.nonZeros() != m_analyzed_nonzeros)
+    {
+      const Deferred_stop_signals deferred; // METIS orders the unknowns (see deferred_stop_signals.h)
+      m_ldlt.analyzePattern(normal);
+      m_analyzed = true;
+      m_analyzed_nonzeros = normal.nonZeros();
     }
-    ldlt_.factorize(normal);
-    if(ldlt_.info() != Eigen::Success) return false;
-    const Eigen::VectorXd delta = ldlt_.solve(-gradient_);
-    if(!delta.allFinite()) return false;
+    m_ldlt.factorize(normal);
+    if(m_ldlt.info() != Eigen::Success)
+      return false;
+    const Eigen::VectorXd delta = m_ldlt.solve(-m_gradient);
+    if(!delta.allFinite())
+      return false;
     d.resize(n);
     for(std::size_t i = 0; i < n; ++i)
-      d[i] = delta[Eigen::Index(2 * i)] * t1_[i] + delta[Eigen::Index(2 * i + 1)] * t2_[i];
-    slope_ = gradient_.dot(delta);
+      d[i] = delta[Eigen::Index(2 * i)] * m_t1[i] + delta[Eigen::Index(2 * i + 1)] * m_t2[i];
+    m_slope = m_gradient.dot(delta);
     return true;
   }
 
   // The directional derivative of Phi_mu along the last step.
-  double slope() const { return slope_; }
+  double slope() const { return m_slope; }
 
   // After linearize(): the Jacobian of the r_i and the gradient of Phi_mu, in the tangent frames below.
-  const Eigen::SparseMatrix<double>& jacobian() const { return jacobian_; }
-  const Eigen::VectorXd& gradient() const { return gradient_; }
-  const std::vector<Vector3>& frame1() const { return t1_; }
-  const std::vector<Vector3>& frame2() const { return t2_; }
+  const Eigen::SparseMatrix<double>& jacobian() const { return m_jacobian; }
+  const Eigen::VectorXd& gradient() const { return m_gradient; }
+  const std::vector<Vector3>& frame1() const { return m_t1; }
+  const std::vector<Vector3>& frame2() const { return m_t2; }
 
 private:
-  void build_pattern() { build_block_pattern(system_, jacobian_, diagonal_slots_, block_slots_); }
+  void build_pattern() { build_block_pattern(m_system, m_jacobian, m_diagonal_slots, m_block_slots); }
 
-
-  const Sphere_system& system_;
-  Least_squares_terms terms_;
-  std::vector<Vector3> t1_, t2_;
-  std::vector<double> face_scale_;
-  Eigen::SparseMatrix<double> jacobian_;
-  std::vector<std::array<std::size_t, 4>> diagonal_slots_, block_slots_;
-  Eigen::VectorXd residual_, gradient_;
-  double slope_ = 0.;
-  bool analyzed_ = false;
-  Eigen::Index analyzed_nonzeros_ = 0;
-  Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>, Eigen::Lower, Eigen::MetisOrdering<int>> ldlt_;
-  bool lu_analyzed_ = false;
-  Eigen::SparseLU<Eigen::SparseMatrix<double>, Eigen::COLAMDOrdering<int>> lu_;
+  const Sphere_system& m_system;
+  Least_squares_terms m_terms;
+  std::vector<Vector3> m_t1, m_t2;
+  std::vector<double> m_face_scale;
+  Eigen::SparseMatrix<double> m_jacobian;
+  std::vector<std::array<std::size_t, 4>> m_diagonal_slots, m_block_slots;
+  Eigen::VectorXd m_residual, m_gradient;
+  double m_slope = 0.;
+  bool m_analyzed = false;
+  Eigen::Index m_analyzed_nonzeros = 0;
+  Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>, Eigen::Lower, Eigen::MetisOrdering<int>> m_ldlt;
+  bool m_lu_analyzed = false;
+  Eigen::SparseLU<Eigen::SparseMatrix<double>, Eigen::COLAMDOrdering<int>> m_lu;
 };
 
-struct Least_squares_report {
-  bool stationary = false;       // max sigma_k <= tolerance (or its rounding floor), without the barrier or at its last mu
-  bool barrier = false;          // triangles stopped the plain steps: the barrier phases ran
+struct Least_squares_report
+{
+  bool stationary = false; // max sigma_k <= tolerance (or its rounding floor), without the barrier or at its last mu
+  bool barrier = false;    // triangles stopped the plain steps: the barrier phases ran
   std::size_t steps = 0;
   bool cancelled = false;
   bool out_of_time = false;
@@ -307,25 +358,29 @@ struct Least_squares_report {
 // tuning.barrier_final_fraction times the tolerance, each with c_f set at its start, solved to
 // max(tolerance, tuning.barrier_phase_factor mu), for at most tuning.least_squares_phase_steps steps. Every iterate
 // is bijective; the one of least Psi (root mean square imbalance) is returned when the test is not met.
-inline Least_squares_report imbalance_least_squares(Sphere_state& state, const Iteration_options& options, const CGAL::Real_timer& clock)
+inline Least_squares_report imbalance_least_squares(Sphere_state& state, const Iteration_options& options,
+                                                    const CGAL::Real_timer& clock)
 {
   Least_squares_report report;
   const Solver_tuning& tuning = options.tuning;
   const Sphere_system& system = state.system();
   const std::size_t n = system.number_of_vertices;
-  if(state.invalid_faces() != 0) return report;
+  if(state.invalid_faces() != 0)
+    return report;
   Imbalance_least_squares problem(system);
   std::vector<Vector3>& x = state.positions();
   std::vector<Vector3> d, trial(n), best = x;
   double best_psi = problem.evaluate(x, 0.);
   double lambda = tuning.marquardt_initial;
   double mu = 0.;
-  const double final_mu = std::min(tuning.barrier_first_parameter, std::max(tuning.barrier_final_fraction * options.tolerance, 1e-12));
+  const double final_mu =
+      std::min(tuning.barrier_first_parameter, std::max(tuning.barrier_final_fraction * options.tolerance, 1e-12));
   double phi = best_psi;
   std::size_t short_steps = 0, phase_steps = 0;
   // Ends the current phase: the next, smaller mu (the first one when the plain steps stall). False after the last.
   auto next_phase = [&]() {
-    if(report.barrier && mu <= final_mu) return false;
+    if(report.barrier && mu <= final_mu)
+      return false;
     mu = report.barrier ? std::max(mu / tuning.barrier_reduction, final_mu) : tuning.barrier_first_parameter;
     report.barrier = true;
     short_steps = phase_steps = 0;
@@ -337,40 +392,55 @@ inline Least_squares_report imbalance_least_squares(Sphere_state& state, const I
   double last_step_seconds = 0.;
   bool plain_steps_allowed = true;
   std::vector<double> stationarity_history;
-  for(;;) {
+  for(;;)
+  {
     // A step is one sparse LU that cannot be interrupted (seconds on brain cortices): none is started that the
     // previous one's duration says would end past the budget.
-    if(past_time_budget(options, clock) ||
-       (options.max_seconds >= 0. && clock.time() + last_step_seconds > options.max_seconds)) {
+    if(past_time_budget(options, clock)
+       || (options.max_seconds >= 0. && clock.time() + last_step_seconds > options.max_seconds))
+    {
       report.out_of_time = true;
       break;
     }
     const double step_start = clock.time();
-    if(options.cancel_requested()) { report.cancelled = true; break; }
-    if(report.steps >= options.max_newton_sweeps) break;
+    if(options.cancel_requested())
+    {
+      report.cancelled = true;
+      break;
+    }
+    if(report.steps >= options.max_newton_sweeps)
+      break;
     problem.linearize(x, mu);
     const bool last_phase = !report.barrier || mu <= final_mu;
-    const Imbalance_summary stationarity =
-        problem.stationarity(last_phase ? options.tolerance : std::max(options.tolerance, tuning.barrier_phase_factor * mu));
-    if(stationarity.balanced()) {
-      if(last_phase) { report.stationary = true; break; }
+    const Imbalance_summary stationarity = problem.stationarity(
+        last_phase ? options.tolerance : std::max(options.tolerance, tuning.barrier_phase_factor * mu));
+    if(stationarity.balanced())
+    {
+      if(last_phase)
+      {
+        report.stationary = true;
+        break;
+      }
       next_phase();
       continue;
     }
     // Plain Gauss-Newton steps converge only linearly where the residuals stay large; where they crawl (the worst
     // stationarity not halved in tuning.least_squares_plain_window steps: homer, 2.5e-6 for 200 steps), Marquardt's.
-    if(plain_steps_allowed) {
+    if(plain_steps_allowed)
+    {
       stationarity_history.push_back(stationarity.max);
       const std::size_t window = tuning.least_squares_plain_window;
-      if(stationarity_history.size() > window &&
-         !(stationarity.max < 0.5 * stationarity_history[stationarity_history.size() - 1 - window]))
+      if(stationarity_history.size() > window
+         && !(stationarity.max < 0.5 * stationarity_history[stationarity_history.size() - 1 - window]))
         plain_steps_allowed = false;
     }
     double t = 0.;
-    for(int attempt = 0; attempt < tuning.marquardt_attempts && t == 0.; ++attempt) {
+    for(int attempt = 0; attempt < tuning.marquardt_attempts && t == 0.; ++attempt)
+    {
       // Without the barrier, the plain Gauss-Newton step first; Marquardt's steps when it does not lower Phi.
       const bool plain = attempt == 0 && mu == 0. && plain_steps_allowed;
-      if(plain ? !problem.gauss_newton_step(x, d) : !problem.step(x, mu, lambda, d)) {
+      if(plain ? !problem.gauss_newton_step(x, d) : !problem.step(x, mu, lambda, d))
+      {
         lambda = std::min(lambda * 10., tuning.marquardt_max);
         continue;
       }
@@ -379,7 +449,8 @@ inline Least_squares_report imbalance_least_squares(Sphere_state& state, const I
       t = backtracking_line_search(
           tuning.cautious_min_step,
           [&](double s) {
-            for(std::size_t i = 0; i < n; ++i) {
+            for(std::size_t i = 0; i < n; ++i)
+            {
               const Vector3 y = x[i] + s * d[i];
               trial[i] = y * (1. / length(y));
             }
@@ -387,33 +458,46 @@ inline Least_squares_report imbalance_least_squares(Sphere_state& state, const I
           },
           [&](double s) {
             trial_phi = problem.evaluate(trial, mu);
-            return trial_phi <= phi + 1e-4 * s * slope;  // Armijo's sufficient decrease
+            return trial_phi <= phi + 1e-4 * s * slope; // Armijo's sufficient decrease
           });
-      if(t > 0.) {
+      if(t > 0.)
+      {
         state.assign(trial, true);
         phi = trial_phi;
         ++report.steps;
         ++phase_steps;
-        if(!plain) lambda = t == 1. ? std::max(lambda / 3., 1e-12) : lambda * 2.;
-      } else {
+        if(!plain)
+          lambda = t == 1. ? std::max(lambda / 3., 1e-12) : lambda * 2.;
+      }
+      else
+      {
         lambda = std::min(lambda * 10., tuning.marquardt_max);
       }
     }
     last_step_seconds = clock.time() - step_start;
     // One report per step, as the other stage-3 solvers send (their Iteration_driver): the progress line, and the
     // user's callback, whose false cancels.
-    if(options.progress && !options.progress("global newton", report.steps, compute_residuals(system, x).paper, 0)) {
+    if(options.progress && !options.progress("global newton", report.steps, compute_residuals(system, x).paper, 0))
+    {
       report.cancelled = true;
       break;
     }
     const double psi = problem.evaluate(x, 0.);
-    if(psi < best_psi) { best_psi = psi; best = x; }
-    if(mu > 0.) problem.evaluate(x, mu);  // linearize() reads the terms of x
+    if(psi < best_psi)
+    {
+      best_psi = psi;
+      best = x;
+    }
+    if(mu > 0.)
+      problem.evaluate(x, mu); // linearize() reads the terms of x
     short_steps = t >= tuning.short_step ? 0 : short_steps + 1;
-    if(t == 0. || short_steps >= tuning.barrier_patience || (report.barrier && phase_steps >= tuning.least_squares_phase_steps))
-      if(!next_phase()) break;
+    if(t == 0. || short_steps >= tuning.barrier_patience
+       || (report.barrier && phase_steps >= tuning.least_squares_phase_steps))
+      if(!next_phase())
+        break;
   }
-  if(!report.stationary && !(best == x)) state.assign(best);
+  if(!report.stationary && !(best == x))
+    state.assign(best);
   return report;
 }
 

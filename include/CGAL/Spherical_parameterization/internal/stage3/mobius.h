@@ -40,33 +40,39 @@ namespace Spherical_parameterization {
 namespace internal {
 
 // The boost with vector c, its constants computed once (tanh and the square root) for the many vertices it moves.
-class Boost {
+class Boost
+{
 public:
   explicit Boost(const Vector3& c)
   {
     const double s = length(c);
-    identity_ = !(s > 0.);
-    if(identity_) return;
-    axis_ = c * (1. / s);
-    t_ = std::tanh(s);
-    root_ = std::sqrt((1. - t_) * (1. + t_));
+    m_identity = !(s > 0.);
+    if(m_identity)
+      return;
+    m_axis = c * (1. / s);
+    m_t = std::tanh(s);
+    m_root = std::sqrt((1. - m_t) * (1. + m_t));
   }
 
   Vector3 operator()(const Vector3& x) const
   {
-    if(identity_) return x;
-    const double u = dot(axis_, x);
-    const Vector3 y = ((u + t_) * axis_ + root_ * (x - u * axis_)) * (1. / (1. + u * t_));
+    if(m_identity)
+      return x;
+    const double u = dot(m_axis, x);
+    const Vector3 y = ((u + m_t) * m_axis + m_root * (x - u * m_axis)) * (1. / (1. + u * m_t));
     return y * (1. / length(y));
   }
 
 private:
-  bool identity_ = true;
-  Vector3 axis_;
-  double t_ = 0., root_ = 1.;
+  bool m_identity = true;
+  Vector3 m_axis;
+  double m_t = 0., m_root = 1.;
 };
 
-inline Vector3 apply_boost(const Vector3& x, const Vector3& c) { return Boost(c)(x); }
+inline Vector3 apply_boost(const Vector3& x, const Vector3& c)
+{
+  return Boost(c)(x);
+}
 
 // The raw (unnormalized) weight of the entry k = (i, j) and its mean with the weight of (j, i): the weights of
 // the symmetric energy that the boosts are balanced against (the raw weights themselves when they are symmetric).
@@ -81,7 +87,8 @@ inline std::vector<double> symmetric_raw_weights(const Sphere_system& system)
 {
   std::vector<double> w(system.neighbors.size());
   for(std::size_t i = 0; i < system.number_of_vertices; ++i)
-    for(std::size_t k = system.offsets[i]; k < system.offsets[i + 1]; ++k) w[k] = symmetric_raw_weight(system, i, k);
+    for(std::size_t k = system.offsets[i]; k < system.offsets[i + 1]; ++k)
+      w[k] = symmetric_raw_weight(system, i, k);
   return w;
 }
 
@@ -93,17 +100,22 @@ inline void spring_energy_and_boost_gradient(const Sphere_system& system, const 
 {
   double e = 0.;
   Vector3 g;
-  for(std::size_t i = 0; i < system.number_of_vertices; ++i) {
+  for(std::size_t i = 0; i < system.number_of_vertices; ++i)
+  {
     Vector3 s;
-    for(std::size_t k = system.offsets[i]; k < system.offsets[i + 1]; ++k) {
+    for(std::size_t k = system.offsets[i]; k < system.offsets[i + 1]; ++k)
+    {
       const Vector3 edge = x[static_cast<std::size_t>(system.neighbors[k])] - x[i];
-      if(energy != nullptr) e += w[k] * squared_length(edge);
+      if(energy != nullptr)
+        e += w[k] * squared_length(edge);
       s += w[k] * edge;
     }
     g += s - dot(s, x[i]) * x[i];
   }
-  if(energy != nullptr) *energy = 0.25 * e;
-  if(gradient != nullptr) *gradient = Eigen::Vector3d(g.x, g.y, g.z);
+  if(energy != nullptr)
+    *energy = 0.25 * e;
+  if(gradient != nullptr)
+    *gradient = Eigen::Vector3d(g.x, g.y, g.z);
 }
 
 // The Jacobian of the boost gradient g along the boosts: column l is the derivative of g(B_{s e_l}(x)) at s = 0.
@@ -115,11 +127,13 @@ inline Eigen::Matrix3d boost_gradient_jacobian(const Sphere_system& system, cons
                                                const std::vector<Vector3>& x)
 {
   Eigen::Matrix3d jacobian = Eigen::Matrix3d::Zero();
-  for(std::size_t i = 0; i < system.number_of_vertices; ++i) {
+  for(std::size_t i = 0; i < system.number_of_vertices; ++i)
+  {
     Eigen::Matrix3d m = Eigen::Matrix3d::Zero();
     Eigen::Vector3d sum = Eigen::Vector3d::Zero();
     const Eigen::Vector3d xi(x[i].x, x[i].y, x[i].z);
-    for(std::size_t k = system.offsets[i]; k < system.offsets[i + 1]; ++k) {
+    for(std::size_t k = system.offsets[i]; k < system.offsets[i + 1]; ++k)
+    {
       const Vector3& p = x[static_cast<std::size_t>(system.neighbors[k])];
       const Eigen::Vector3d xj(p.x, p.y, p.z);
       m.noalias() += w[k] * (xj * xj.transpose());
@@ -149,31 +163,42 @@ inline Eigen::Vector3d boost_gradient(const Sphere_system& system, const std::ve
 
 // The least-squares infinitesimal rotation w and boost c that best explain the tangent displacements d_i
 // (d_i ~ w x x_i + c - (c.x_i) x_i); both are subtracted from d.
-inline void remove_rotation_and_boost(const std::vector<Vector3>& x, std::vector<Vector3>& d, Vector3& rotation, Vector3& boost)
+inline void remove_rotation_and_boost(const std::vector<Vector3>& x, std::vector<Vector3>& d, Vector3& rotation,
+                                      Vector3& boost)
 {
   using Matrix6 = Eigen::Matrix<double, 6, 6>;
   using Vector6 = Eigen::Matrix<double, 6, 1>;
   Matrix6 normal = Matrix6::Zero();
   Vector6 moment = Vector6::Zero();
   const Vector3 axis[3] = {Vector3(1, 0, 0), Vector3(0, 1, 0), Vector3(0, 0, 1)};
-  for(std::size_t i = 0; i < x.size(); ++i) {
+  for(std::size_t i = 0; i < x.size(); ++i)
+  {
     Vector3 field[6];
-    for(int k = 0; k < 3; ++k) {
+    for(int k = 0; k < 3; ++k)
+    {
       field[k] = cross(axis[k], x[i]);
       field[3 + k] = axis[k] - x[i][k] * x[i];
     }
-    for(int a = 0; a < 6; ++a) {
+    for(int a = 0; a < 6; ++a)
+    {
       moment[a] += dot(field[a], d[i]);
-      for(int b = a; b < 6; ++b) normal(a, b) += dot(field[a], field[b]);
+      for(int b = a; b < 6; ++b)
+        normal(a, b) += dot(field[a], field[b]);
     }
   }
   for(int a = 0; a < 6; ++a)
-    for(int b = 0; b < a; ++b) normal(a, b) = normal(b, a);
+    for(int b = 0; b < a; ++b)
+      normal(a, b) = normal(b, a);
   const Vector6 c = normal.ldlt().solve(moment);
-  if(!c.allFinite()) { rotation = boost = Vector3(); return; }
+  if(!c.allFinite())
+  {
+    rotation = boost = Vector3();
+    return;
+  }
   rotation = Vector3(c[0], c[1], c[2]);
   boost = Vector3(c[3], c[4], c[5]);
-  for(std::size_t i = 0; i < x.size(); ++i) d[i] -= cross(rotation, x[i]) + (boost - dot(boost, x[i]) * x[i]);
+  for(std::size_t i = 0; i < x.size(); ++i)
+    d[i] -= cross(rotation, x[i]) + (boost - dot(boost, x[i]) * x[i]);
 }
 
 // What the boosts are balanced to. E is a maximum along the boosts at the balanced map, but not at every iterate on
@@ -185,7 +210,11 @@ inline void remove_rotation_and_boost(const std::vector<Vector3>& x, std::vector
 // heads for can be the collapse at infinity, where g vanishes like exp(-2s) along a boost (Newton's steps keep the
 // length 1/2 there): CGAL's u.off and openscad1580 collapsed. There the steps go up E (MAXIMUM), the collapse being
 // E's minimum.
-enum class Boost_aim { MAXIMUM, ROOT };
+enum class Boost_aim
+{
+  MAXIMUM,
+  ROOT
+};
 
 // Balances the boosts: Newton's method on the three equations g(c) = 0 of the boost parameters c (g =
 // boost_gradient, the residual forces summed along the boost fields; its Jacobian exact with ROOT, from finite
@@ -203,7 +232,8 @@ inline std::size_t balance_boosts(Sphere_state& state, const std::vector<double>
   std::vector<Vector3> y(n);
   auto boosted = [&](const Eigen::Vector3d& c) {
     const Boost boost(Vector3(c[0], c[1], c[2]));
-    for(std::size_t i = 0; i < n; ++i) y[i] = boost(x[i]);
+    for(std::size_t i = 0; i < n; ++i)
+      y[i] = boost(x[i]);
   };
   auto gradient_at = [&](const std::vector<Vector3>& z) {
     Eigen::Vector3d g;
@@ -214,24 +244,32 @@ inline std::size_t balance_boosts(Sphere_state& state, const std::vector<double>
   Eigen::Vector3d g;
   double energy = 0.;
   spring_energy_and_boost_gradient(system, w, x, &energy, &g);
-  for(std::size_t iteration = 0; iteration < tuning.boost_max_iterations; ++iteration) {
-    if(!(g.norm() > target)) break;
+  for(std::size_t iteration = 0; iteration < tuning.boost_max_iterations; ++iteration)
+  {
+    if(!(g.norm() > target))
+      break;
     Eigen::Matrix3d slope;
-    if(aim == Boost_aim::ROOT) {
+    if(aim == Boost_aim::ROOT)
+    {
       slope = boost_gradient_jacobian(system, w, x);
-    } else {
+    }
+    else
+    {
       // The finite differences with which the two-disk path's outcomes on the test corpus were measured (the
       // exact Jacobian changed which of its hard cases converge, both ways).
       const double epsilon = 1e-6;
-      for(int l = 0; l < 3; ++l) {
+      for(int l = 0; l < 3; ++l)
+      {
         boosted(epsilon * Eigen::Vector3d::Unit(l));
         slope.col(l) = (gradient_at(y) - g) / epsilon;
       }
     }
     // Newton's step for g(c) = 0 (see Boost_aim).
     Eigen::Vector3d c = -slope.partialPivLu().solve(g);
-    if(!c.allFinite() || (aim == Boost_aim::MAXIMUM && !(-g.dot(c) > 0.))) c = -g;
-    if(c.norm() > tuning.boost_max_step) c *= tuning.boost_max_step / c.norm();
+    if(!c.allFinite() || (aim == Boost_aim::MAXIMUM && !(-g.dot(c) > 0.)))
+      c = -g;
+    if(c.norm() > tuning.boost_max_step)
+      c *= tuning.boost_max_step / c.norm();
     double trial_energy = 0.;
     Eigen::Vector3d trial_gradient;
     const double accepted = backtracking_line_search(
@@ -244,7 +282,8 @@ inline std::size_t balance_boosts(Sphere_state& state, const std::vector<double>
           spring_energy_and_boost_gradient(system, w, y, &trial_energy, &trial_gradient);
           return trial_energy > energy || trial_gradient.norm() < g.norm();
         });
-    if(accepted == 0.) break;
+    if(accepted == 0.)
+      break;
     state.assign(y, true);
     energy = trial_energy;
     g = trial_gradient;

@@ -34,10 +34,11 @@ namespace CGAL {
 namespace Spherical_parameterization {
 namespace internal {
 
-struct Mobius_newton_statistics {
-  std::size_t newton_steps = 0;    // accepted Newton steps
-  bool gave_up = false;            // Newton's steps were too short: the caller should continue otherwise
-  std::size_t linear_iterations = 0;  // MINRES iterations (iterative linear solves only)
+struct Mobius_newton_statistics
+{
+  std::size_t newton_steps = 0;      // accepted Newton steps
+  bool gave_up = false;              // Newton's steps were too short: the caller should continue otherwise
+  std::size_t linear_iterations = 0; // MINRES iterations (iterative linear solves only)
 };
 
 // The signed spherical areas add up to 4 pi times the degree of the map. Folds keep the degree; a collapse of the
@@ -47,7 +48,8 @@ inline bool has_degree_one(const Sphere_system& system, const std::vector<Vector
 {
   double area = 0.;
   for(const auto& t : system.triangles)
-    area += signed_spherical_area(x[static_cast<std::size_t>(t[0])], x[static_cast<std::size_t>(t[1])], x[static_cast<std::size_t>(t[2])]);
+    area += signed_spherical_area(x[static_cast<std::size_t>(t[0])], x[static_cast<std::size_t>(t[1])],
+                                  x[static_cast<std::size_t>(t[2])]);
   return std::abs(area - 4. * CGAL_PI) < CGAL_PI;
 }
 
@@ -66,11 +68,16 @@ inline bool has_degree_one(const Sphere_system& system, const std::vector<Vector
 // (their imbalances rise for a while: camel, man and four others of the 66 meshes fail when every step must lower
 // them), but any shrinking of the map lowers Res too, and on some meshes the steps then slide along the boosts
 // towards a collapse (CGAL's handle). The imbalances (imbalance_merit) are scale-free: a collapse does not lower them.
-enum class Step_merit { RESIDUAL, IMBALANCE };
+enum class Step_merit
+{
+  RESIDUAL,
+  IMBALANCE
+};
 
-inline Iteration_report mobius_newton(Sphere_state& state, const Iteration_options& options, const CGAL::Real_timer& clock,
-                                      Mobius_newton_statistics* statistics = nullptr, std::size_t patience = 3,
-                                      bool allow_folds = false, Step_merit step_merit = Step_merit::RESIDUAL,
+inline Iteration_report mobius_newton(Sphere_state& state, const Iteration_options& options,
+                                      const CGAL::Real_timer& clock, Mobius_newton_statistics* statistics = nullptr,
+                                      std::size_t patience = 3, bool allow_folds = false,
+                                      Step_merit step_merit = Step_merit::RESIDUAL,
                                       Boost_aim boost_aim = Boost_aim::MAXIMUM)
 {
   const Solver_tuning& tuning = options.tuning;
@@ -88,7 +95,8 @@ inline Iteration_report mobius_newton(Sphere_state& state, const Iteration_optio
   // (Tutte's, mean value made admissible, cotangent on Delaunay meshes); with negative cotangent weights MINRES
   // needed hundreds of iterations per step (c3d_igea: 2,973 in 22 steps, 197 s against 48 s factorized).
   bool positive_weights = true;
-  for(double w : system.weights) positive_weights = positive_weights && w > 0.;
+  for(double w : system.weights)
+    positive_weights = positive_weights && w > 0.;
   const bool iterative = allow_folds && positive_weights && n >= tuning.iterative_newton_min_vertices;
   Tangent_krylov_system krylov(system);
   const std::vector<double> boost_weights = symmetric_raw_weights(system);
@@ -102,97 +110,124 @@ inline Iteration_report mobius_newton(Sphere_state& state, const Iteration_optio
   const std::vector<Vector3> start = x;
   driver.keep_best_iterate();
   std::size_t short_steps = 0;
-  while(driver.may_start()) {
-    if(allow_folds && (driver.iterations() >= patience ||
-                       (state.invalid_faces() > 0 && driver.measure().imbalance.balanced()))) {
+  while(driver.may_start())
+  {
+    if(allow_folds
+       && (driver.iterations() >= patience || (state.invalid_faces() > 0 && driver.measure().imbalance.balanced())))
+    {
       counts.gave_up = true;
       break;
     }
 
     // The boost gradient only needs to be small next to the residual forces that Newton is about to remove.
-    balance_boosts(state, boost_weights, tuning.boost_target_factor * residual * static_cast<double>(n), tuning, boost_aim);
-    if(!driver.within_budget()) break;
+    balance_boosts(state, boost_weights, tuning.boost_target_factor * residual * static_cast<double>(n), tuning,
+                   boost_aim);
+    if(!driver.within_budget())
+      break;
     const double previous_residual = residual;
     residual = driver.measure().residual;
     const double merit = merit_of(driver.measure());
 
     bool has_step = false;
-    if(iterative) {
+    if(iterative)
+    {
       has_step = krylov.assemble(x) && krylov.solve(step, forcing, tuning.newton_max_minres_iterations);
       counts.linear_iterations += static_cast<std::size_t>(krylov.last_iterations());
-    } else {
+    }
+    else
+    {
       has_step = newton.factorize(x) && newton.solve(step, allow_folds);
     }
-    if(!driver.within_budget()) break;
+    if(!driver.within_budget())
+      break;
     double accepted_t = 0.;
-    if(has_step) {
+    if(has_step)
+    {
       Vector3 rotation, boost;
       remove_rotation_and_boost(x, step, rotation, boost);
       // With Boost_aim::ROOT the boosts are outer unknowns, set by balance_boosts before each step; the step keeps
       // to the other directions. Its boost part is Newton's estimate along the nearly singular directions, poor
       // after the balancing (0.1 to 5 on bunny00's finest level, where it cost 15 steps instead of 6).
-      if(boost_aim == Boost_aim::ROOT) boost = Vector3();
+      if(boost_aim == Boost_aim::ROOT)
+        boost = Vector3();
       accepted_t = backtracking_line_search(
           tuning.newton_min_step,
           [&](double t) {
-            for(std::size_t i = 0; i < n; ++i) {
+            for(std::size_t i = 0; i < n; ++i)
+            {
               const Vector3 y = x[i] + t * step[i];
               trial[i] = apply_boost(y * (1. / length(y)), t * boost);
             }
-            return allow_folds ? has_degree_one(system, trial) : !options.preserve_bijectivity || state.keeps_positive_faces(trial);
+            return allow_folds ? has_degree_one(system, trial)
+                               : !options.preserve_bijectivity || state.keeps_positive_faces(trial);
           },
           [&](double) {
             const double trial_merit = step_merit == Step_merit::IMBALANCE ? imbalance_merit(system, trial)
                                                                            : compute_residuals(system, trial).paper;
             return trial_merit < merit;
           });
-      if(accepted_t > 0.) {
+      if(accepted_t > 0.)
+      {
         state.assign(trial, !allow_folds && options.preserve_bijectivity);
         residual = driver.measure().residual;
         ++counts.newton_steps;
       }
     }
-    if(iterative) {
-      if(accepted_t == 0. && forcing > tuning.newton_min_forcing) {
-        forcing = tuning.newton_min_forcing;  // the same point again, with a nearly exact step
+    if(iterative)
+    {
+      if(accepted_t == 0. && forcing > tuning.newton_min_forcing)
+      {
+        forcing = tuning.newton_min_forcing; // the same point again, with a nearly exact step
         driver.count_retry();
         continue;
       }
       const double ratio = previous_residual > 0. ? residual / previous_residual : 1.;
       forcing = std::min(tuning.newton_max_forcing, std::max(tuning.newton_min_forcing, 0.9 * ratio * ratio));
     }
-    if(accepted_t == 0. && allow_folds) {
+    if(accepted_t == 0. && allow_folds)
+    {
       counts.gave_up = true;
       break;
     }
-    if(accepted_t == 0.) {
+    if(accepted_t == 0.)
+    {
       // No acceptable step: the paper's local Newton sweeps (which keep every positive triangle positive) move
       // the iterate, so that the next Newton step starts elsewhere.
       for(int sweep = 0; sweep < tuning.local_sweeps_without_step; ++sweep)
         for(std::size_t i = 0; i < n; ++i)
-          if(!local_newton_step(state, i, options.preserve_bijectivity)) ++driver.report().rejected_moves;
+          if(!local_newton_step(state, i, options.preserve_bijectivity))
+            ++driver.report().rejected_moves;
       state.refresh_sums();
       residual = driver.measure().residual;
     }
-    if(!driver.end_iteration()) {
+    if(!driver.end_iteration())
+    {
       counts.gave_up = driver.report().stagnated;
       break;
     }
     short_steps = accepted_t >= tuning.short_step ? 0 : short_steps + 1;
-    if(!allow_folds && short_steps >= patience) { counts.gave_up = true; break; }
+    if(!allow_folds && short_steps >= patience)
+    {
+      counts.gave_up = true;
+      break;
+    }
   }
   Iteration_report& report = driver.report();
   // A converged map that the certificate rejects (a degenerate collapse with a degree other than 1): none of these
   // iterates is trusted.
-  if(!counts.gave_up && driver.converged() && !certify(system.triangles, x).bijective) {
+  if(!counts.gave_up && driver.converged() && !certify(system.triangles, x).bijective)
+  {
     counts.gave_up = true;
     driver.restore(start);
-  } else if(counts.gave_up || report.cancelled || report.out_of_time) {
+  }
+  else if(counts.gave_up || report.cancelled || report.out_of_time)
+  {
     driver.restore_best();
   }
   report.stagnated = counts.gave_up;
   report.linear_iterations = counts.linear_iterations;
-  if(statistics != nullptr) *statistics = counts;
+  if(statistics != nullptr)
+    *statistics = counts;
   return driver.finish();
 }
 

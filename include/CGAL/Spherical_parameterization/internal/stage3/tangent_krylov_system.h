@@ -40,9 +40,10 @@ namespace CGAL {
 namespace Spherical_parameterization {
 namespace internal {
 
-class Tangent_krylov_system {
+class Tangent_krylov_system
+{
 public:
-  explicit Tangent_krylov_system(const Sphere_system& system) : system_(system) {}
+  explicit Tangent_krylov_system(const Sphere_system& system) : m_system(system) {}
 
   // The Laplacian's diagonal is raised by this fraction: its constants (whose tangent parts are the boosts) are
   // otherwise a null space, and the coarsest level's direct solve would be singular.
@@ -51,26 +52,29 @@ public:
   // Assembles the equations at x (frames, diagonal, right-hand side); builds the multigrid on the first call.
   bool assemble(const std::vector<Vector3>& x)
   {
-    const std::size_t n = system_.number_of_vertices;
-    if(!hierarchy_built_) {
-      if(!build_preconditioner()) return false;
-      hierarchy_built_ = true;
+    const std::size_t n = m_system.number_of_vertices;
+    if(!m_hierarchy_built)
+    {
+      if(!build_preconditioner())
+        return false;
+      m_hierarchy_built = true;
     }
-    t1_.resize(n);
-    t2_.resize(n);
-    alpha_.resize(n);
-    rhs_.assign(2 * n, 0.);
-    for(std::size_t i = 0; i < n; ++i) {
-      tangent_frame(x[i], t1_[i], t2_[i]);
+    m_t1.resize(n);
+    m_t2.resize(n);
+    m_alpha.resize(n);
+    m_rhs.assign(2 * n, 0.);
+    for(std::size_t i = 0; i < n; ++i)
+    {
+      tangent_frame(x[i], m_t1[i], m_t2[i]);
       Vector3 force;
       double alpha = 0.;
-      force_and_alpha(system_, x, i, force, alpha);
-      alpha_[i] = alpha;
-      rhs_[2 * i] = dot(t1_[i], force);
-      rhs_[2 * i + 1] = dot(t2_[i], force);
+      force_and_alpha(m_system, x, i, force, alpha);
+      m_alpha[i] = alpha;
+      m_rhs[2 * i] = dot(m_t1[i], force);
+      m_rhs[2 * i + 1] = dot(m_t2[i], force);
     }
     build_rotation_basis(x);
-    project_out_rotations(rhs_.data());
+    project_out_rotations(m_rhs.data());
     return true;
   }
 
@@ -78,41 +82,46 @@ public:
   // norm); false when MINRES breaks down or the step is not finite.
   bool solve(std::vector<Vector3>& step, double relative_tolerance, int max_iterations = 500)
   {
-    const std::size_t n = system_.number_of_vertices;
+    const std::size_t n = m_system.number_of_vertices;
     const AMG::Index size = static_cast<AMG::Index>(2 * n);
-    solution_.assign(2 * n, 0.);
+    m_solution.assign(2 * n, 0.);
     auto apply_operator = [this](const double* in, double* out) { multiply(in, out); };
     auto apply_preconditioner = [this](const double* in, double* out) { precondition(in, out); };
-    const AMG::Krylov_result result = AMG::minres(apply_operator, apply_preconditioner, rhs_.data(), solution_.data(), size,
-                                                  relative_tolerance, max_iterations, workspace_);
-    last_iterations_ = result.iterations;
-    last_relative_residual_ = result.relative_residual;
+    const AMG::Krylov_result result = AMG::minres(apply_operator, apply_preconditioner, m_rhs.data(), m_solution.data(),
+                                                  size, relative_tolerance, max_iterations, m_workspace);
+    m_last_iterations = result.iterations;
+    m_last_relative_residual = result.relative_residual;
     step.resize(n);
-    for(std::size_t i = 0; i < n; ++i) {
-      step[i] = solution_[2 * i] * t1_[i] + solution_[2 * i + 1] * t2_[i];
-      if(!std::isfinite(step[i].x) || !std::isfinite(step[i].y) || !std::isfinite(step[i].z)) return false;
+    for(std::size_t i = 0; i < n; ++i)
+    {
+      step[i] = m_solution[2 * i] * m_t1[i] + m_solution[2 * i + 1] * m_t2[i];
+      if(!std::isfinite(step[i].x) || !std::isfinite(step[i].y) || !std::isfinite(step[i].z))
+        return false;
     }
     return result.iterations > 0 || result.converged;
   }
 
-  int last_iterations() const { return last_iterations_; }
-  double last_relative_residual() const { return last_relative_residual_; }
+  int last_iterations() const { return m_last_iterations; }
+  double last_relative_residual() const { return m_last_relative_residual; }
 
 private:
   // out = P (-J) P in, with P the projection orthogonal to the rotations.
   void multiply(const double* in, double* out)
   {
-    const std::size_t n = system_.number_of_vertices;
-    projected_.assign(in, in + 2 * n);
-    project_out_rotations(projected_.data());
-    ambient_.resize(n);
-    for(std::size_t i = 0; i < n; ++i) ambient_[i] = projected_[2 * i] * t1_[i] + projected_[2 * i + 1] * t2_[i];
-    for(std::size_t i = 0; i < n; ++i) {
+    const std::size_t n = m_system.number_of_vertices;
+    m_projected.assign(in, in + 2 * n);
+    project_out_rotations(m_projected.data());
+    m_ambient.resize(n);
+    for(std::size_t i = 0; i < n; ++i)
+      m_ambient[i] = m_projected[2 * i] * m_t1[i] + m_projected[2 * i + 1] * m_t2[i];
+    for(std::size_t i = 0; i < n; ++i)
+    {
       Vector3 pull;
-      for(std::size_t k = system_.offsets[i]; k < system_.offsets[i + 1]; ++k)
-        pull += (system_.weights[k] * system_.row_sums[i]) * ambient_[static_cast<std::size_t>(system_.neighbors[k])];
-      out[2 * i] = alpha_[i] * projected_[2 * i] - dot(t1_[i], pull);
-      out[2 * i + 1] = alpha_[i] * projected_[2 * i + 1] - dot(t2_[i], pull);
+      for(std::size_t k = m_system.offsets[i]; k < m_system.offsets[i + 1]; ++k)
+        pull +=
+            (m_system.weights[k] * m_system.row_sums[i]) * m_ambient[static_cast<std::size_t>(m_system.neighbors[k])];
+      out[2 * i] = m_alpha[i] * m_projected[2 * i] - dot(m_t1[i], pull);
+      out[2 * i + 1] = m_alpha[i] * m_projected[2 * i + 1] - dot(m_t2[i], pull);
     }
     project_out_rotations(out);
   }
@@ -120,22 +129,24 @@ private:
   // out = P T^T (L^-1 (x) I3) T P in: one V-cycle for the three ambient coordinates at once.
   void precondition(const double* in, double* out)
   {
-    const std::size_t n = system_.number_of_vertices;
-    projected_.assign(in, in + 2 * n);
-    project_out_rotations(projected_.data());
-    coordinates_in_.resize(3 * n);
-    coordinates_out_.resize(3 * n);
-    for(std::size_t i = 0; i < n; ++i) {
-      const Vector3 v = projected_[2 * i] * t1_[i] + projected_[2 * i + 1] * t2_[i];
-      coordinates_in_[3 * i] = v.x;
-      coordinates_in_[3 * i + 1] = v.y;
-      coordinates_in_[3 * i + 2] = v.z;
+    const std::size_t n = m_system.number_of_vertices;
+    m_projected.assign(in, in + 2 * n);
+    project_out_rotations(m_projected.data());
+    m_coordinates_in.resize(3 * n);
+    m_coordinates_out.resize(3 * n);
+    for(std::size_t i = 0; i < n; ++i)
+    {
+      const Vector3 v = m_projected[2 * i] * m_t1[i] + m_projected[2 * i + 1] * m_t2[i];
+      m_coordinates_in[3 * i] = v.x;
+      m_coordinates_in[3 * i + 1] = v.y;
+      m_coordinates_in[3 * i + 2] = v.z;
     }
-    hierarchy_.apply_v_cycle_block<3>(coordinates_in_.data(), coordinates_out_.data());
-    for(std::size_t i = 0; i < n; ++i) {
-      const Vector3 v(coordinates_out_[3 * i], coordinates_out_[3 * i + 1], coordinates_out_[3 * i + 2]);
-      out[2 * i] = dot(t1_[i], v);
-      out[2 * i + 1] = dot(t2_[i], v);
+    m_hierarchy.apply_v_cycle_block<3>(m_coordinates_in.data(), m_coordinates_out.data());
+    for(std::size_t i = 0; i < n; ++i)
+    {
+      const Vector3 v(m_coordinates_out[3 * i], m_coordinates_out[3 * i + 1], m_coordinates_out[3 * i + 2]);
+      out[2 * i] = dot(m_t1[i], v);
+      out[2 * i + 1] = dot(m_t2[i], v);
     }
     project_out_rotations(out);
   }
@@ -144,74 +155,84 @@ private:
   // for cotangent weights of either sign), slightly raised.
   bool build_preconditioner()
   {
-    const std::size_t n = system_.number_of_vertices;
+    const std::size_t n = m_system.number_of_vertices;
     AMG::Compressed_row_matrix laplacian;
     laplacian.number_of_rows = laplacian.number_of_columns = static_cast<AMG::Index>(n);
     laplacian.row_start.assign(n + 1, 0);
-    laplacian.column.reserve(n + system_.neighbors.size());
-    laplacian.value.reserve(n + system_.neighbors.size());
+    laplacian.column.reserve(n + m_system.neighbors.size());
+    laplacian.value.reserve(n + m_system.neighbors.size());
     std::vector<std::pair<AMG::Index, double>> row;
-    for(std::size_t i = 0; i < n; ++i) {
+    for(std::size_t i = 0; i < n; ++i)
+    {
       row.clear();
       double diagonal = 0.;
-      for(std::size_t k = system_.offsets[i]; k < system_.offsets[i + 1]; ++k) {
-        const double w = system_.weights[k] * system_.row_sums[i];
+      for(std::size_t k = m_system.offsets[i]; k < m_system.offsets[i + 1]; ++k)
+      {
+        const double w = m_system.weights[k] * m_system.row_sums[i];
         diagonal += std::abs(w);
-        row.emplace_back(static_cast<AMG::Index>(system_.neighbors[k]), -w);
+        row.emplace_back(static_cast<AMG::Index>(m_system.neighbors[k]), -w);
       }
       row.emplace_back(static_cast<AMG::Index>(i), diagonal * (1. + laplacian_shift));
       std::sort(row.begin(), row.end());
-      for(const auto& entry : row) {
+      for(const auto& entry : row)
+      {
         laplacian.column.push_back(entry.first);
         laplacian.value.push_back(entry.second);
       }
       laplacian.row_start[i + 1] = static_cast<AMG::Index>(laplacian.column.size());
     }
-    return hierarchy_.build(std::move(laplacian), AMG::Hierarchy_parameters());
+    return m_hierarchy.build(std::move(laplacian), AMG::Hierarchy_parameters());
   }
 
   // An orthonormal basis (in the 2n tangent coordinates) of the three rotation fields e_k x x_i.
   void build_rotation_basis(const std::vector<Vector3>& x)
   {
-    const std::size_t n = system_.number_of_vertices;
+    const std::size_t n = m_system.number_of_vertices;
     const Vector3 axis[3] = {Vector3(1, 0, 0), Vector3(0, 1, 0), Vector3(0, 0, 1)};
-    for(std::size_t k = 0; k < 3; ++k) {
-      std::vector<double>& q = rotations_[k];
+    for(std::size_t k = 0; k < 3; ++k)
+    {
+      std::vector<double>& q = m_rotations[k];
       q.resize(2 * n);
-      for(std::size_t i = 0; i < n; ++i) {
+      for(std::size_t i = 0; i < n; ++i)
+      {
         const Vector3 f = cross(axis[k], x[i]);
-        q[2 * i] = dot(t1_[i], f);
-        q[2 * i + 1] = dot(t2_[i], f);
+        q[2 * i] = dot(m_t1[i], f);
+        q[2 * i + 1] = dot(m_t2[i], f);
       }
       for(int pass = 0; pass < 2; ++pass)
-        for(std::size_t m = 0; m < k; ++m) {
-          const double c = AMG::dot(q.data(), rotations_[m].data(), static_cast<AMG::Index>(2 * n));
-          for(std::size_t r = 0; r < 2 * n; ++r) q[r] -= c * rotations_[m][r];
+        for(std::size_t m = 0; m < k; ++m)
+        {
+          const double c = AMG::dot(q.data(), m_rotations[m].data(), static_cast<AMG::Index>(2 * n));
+          for(std::size_t r = 0; r < 2 * n; ++r)
+            q[r] -= c * m_rotations[m][r];
         }
       const double length_q = AMG::norm(q.data(), static_cast<AMG::Index>(2 * n));
-      for(double& value : q) value /= length_q;
+      for(double& value : q)
+        value /= length_q;
     }
   }
 
   void project_out_rotations(double* v) const
   {
-    const AMG::Index size = static_cast<AMG::Index>(2 * system_.number_of_vertices);
-    for(const std::vector<double>& q : rotations_) {
+    const AMG::Index size = static_cast<AMG::Index>(2 * m_system.number_of_vertices);
+    for(const std::vector<double>& q : m_rotations)
+    {
       const double c = AMG::dot(v, q.data(), size);
-      for(AMG::Index r = 0; r < size; ++r) v[r] -= c * q[static_cast<std::size_t>(r)];
+      for(AMG::Index r = 0; r < size; ++r)
+        v[r] -= c * q[static_cast<std::size_t>(r)];
     }
   }
 
-  const Sphere_system& system_;
-  std::vector<Vector3> t1_, t2_, ambient_;
-  std::vector<double> alpha_, rhs_, solution_, projected_;
-  std::vector<double> rotations_[3];
-  std::vector<double> coordinates_in_, coordinates_out_;  // three ambient coordinates, interleaved
-  AMG::Ruge_stueben_hierarchy hierarchy_;
-  AMG::Krylov_workspace workspace_;
-  bool hierarchy_built_ = false;
-  int last_iterations_ = 0;
-  double last_relative_residual_ = 0.;
+  const Sphere_system& m_system;
+  std::vector<Vector3> m_t1, m_t2, m_ambient;
+  std::vector<double> m_alpha, m_rhs, m_solution, m_projected;
+  std::vector<double> m_rotations[3];
+  std::vector<double> m_coordinates_in, m_coordinates_out; // three ambient coordinates, interleaved
+  AMG::Ruge_stueben_hierarchy m_hierarchy;
+  AMG::Krylov_workspace m_workspace;
+  bool m_hierarchy_built = false;
+  int m_last_iterations = 0;
+  double m_last_relative_residual = 0.;
 };
 
 } // namespace internal

@@ -49,20 +49,25 @@ inline std::vector<int> vertex_elimination_rank(const Sphere_system& system)
   const std::size_t n = system.number_of_vertices;
   std::vector<int> rank(n);
   std::iota(rank.begin(), rank.end(), 0);
-  if(n < 3) return rank;
-  if(n < 20000) {
+  if(n < 3)
+    return rank;
+  if(n < 20000)
+  {
     Eigen::SparseMatrix<double> pattern(static_cast<Eigen::Index>(n), static_cast<Eigen::Index>(n));
     std::vector<Eigen::Triplet<double>> entries;
     entries.reserve(n + system.neighbors.size());
-    for(std::size_t i = 0; i < n; ++i) {
+    for(std::size_t i = 0; i < n; ++i)
+    {
       entries.emplace_back(static_cast<int>(i), static_cast<int>(i), 1.);
-      for(std::size_t k = system.offsets[i]; k < system.offsets[i + 1]; ++k) entries.emplace_back(static_cast<int>(i), system.neighbors[k], 1.);
+      for(std::size_t k = system.offsets[i]; k < system.offsets[i + 1]; ++k)
+        entries.emplace_back(static_cast<int>(i), system.neighbors[k], 1.);
     }
     pattern.setFromTriplets(entries.begin(), entries.end());
     Eigen::PermutationMatrix<Eigen::Dynamic, Eigen::Dynamic, int> inverse;
     Eigen::AMDOrdering<int>()(pattern, inverse);
     const Eigen::PermutationMatrix<Eigen::Dynamic, Eigen::Dynamic, int> order = inverse.inverse();
-    for(std::size_t i = 0; i < n; ++i) rank[i] = order.indices()[static_cast<Eigen::Index>(i)];
+    for(std::size_t i = 0; i < n; ++i)
+      rank[i] = order.indices()[static_cast<Eigen::Index>(i)];
     return rank;
   }
   idx_t nv = static_cast<idx_t>(n);
@@ -72,9 +77,11 @@ inline std::vector<int> vertex_elimination_rank(const Sphere_system& system)
   idx_t options[METIS_NOPTIONS];
   METIS_SetDefaultOptions(options);
   options[METIS_OPTION_NUMBERING] = 0;
-  const Deferred_stop_signals deferred;  // no stop signal lost inside METIS (see deferred_stop_signals.h)
-  if(METIS_NodeND(&nv, xadj.data(), adjncy.data(), nullptr, options, perm.data(), iperm.data()) != METIS_OK) return rank;
-  for(std::size_t i = 0; i < n; ++i) rank[i] = static_cast<int>(iperm[i]);
+  const Deferred_stop_signals deferred; // no stop signal lost inside METIS (see deferred_stop_signals.h)
+  if(METIS_NodeND(&nv, xadj.data(), adjncy.data(), nullptr, options, perm.data(), iperm.data()) != METIS_OK)
+    return rank;
+  for(std::size_t i = 0; i < n; ++i)
+    rank[i] = static_cast<int>(iperm[i]);
   return rank;
 }
 
@@ -82,11 +89,13 @@ inline std::vector<int> vertex_elimination_rank(const Sphere_system& system)
 // sum_j W_ij (x_j - x_i) (its tangential part is the residual) and alpha_i = x_i . sum_j W_ij x_j (the diagonal of
 // the Jacobian), both written with differences, alpha_i = sum_j W_ij (1 - |x_j - x_i|^2 / 2), so that tiny triangles
 // keep their digits.
-inline void force_and_alpha(const Sphere_system& system, const std::vector<Vector3>& x, std::size_t i, Vector3& force, double& alpha)
+inline void force_and_alpha(const Sphere_system& system, const std::vector<Vector3>& x, std::size_t i, Vector3& force,
+                            double& alpha)
 {
   force = Vector3();
   alpha = 0.;
-  for(std::size_t k = system.offsets[i]; k < system.offsets[i + 1]; ++k) {
+  for(std::size_t k = system.offsets[i]; k < system.offsets[i + 1]; ++k)
+  {
     const double w = system.weights[k] * system.row_sums[i];
     const Vector3 e = x[static_cast<std::size_t>(system.neighbors[k])] - x[i];
     force += w * e;
@@ -97,7 +106,8 @@ inline void force_and_alpha(const Sphere_system& system, const std::vector<Vecto
 // The Jacobian builder of every Newton step in tangent coordinates: the 2x2 block of the equations of vertex i in
 // the unknowns of vertex j is w T_i^T T_j (rows: i's frame t1_i, t2_i; columns: j's), with w the raw weight; the
 // diagonal block is -alpha_i I (force_and_alpha). In the order (t1.t1, t1.t2, t2.t1, t2.t2).
-inline std::array<double, 4> tangent_block(double w, const Vector3& t1_i, const Vector3& t2_i, const Vector3& t1_j, const Vector3& t2_j)
+inline std::array<double, 4> tangent_block(double w, const Vector3& t1_i, const Vector3& t2_i, const Vector3& t1_j,
+                                           const Vector3& t2_j)
 {
   return {w * dot(t1_i, t1_j), w * dot(t1_i, t2_j), w * dot(t2_i, t1_j), w * dot(t2_i, t2_j)};
 }
@@ -108,7 +118,7 @@ inline std::size_t compressed_slot(const Eigen::SparseMatrix<double>& matrix, Ei
   const int* begin = matrix.innerIndexPtr() + matrix.outerIndexPtr()[column];
   const int* end = matrix.innerIndexPtr() + matrix.outerIndexPtr()[column + 1];
   const int* slot = std::lower_bound(begin, end, static_cast<int>(row));
-  CGAL_assertion(slot != end && *slot == static_cast<int>(row));  // the pattern holds every block
+  CGAL_assertion(slot != end && *slot == static_cast<int>(row)); // the pattern holds every block
   return static_cast<std::size_t>(slot - matrix.innerIndexPtr());
 }
 
@@ -124,11 +134,14 @@ inline void build_block_pattern(const Sphere_system& system, Eigen::SparseMatrix
   triplets.reserve(4 * (n + system.neighbors.size()));
   auto add_block = [&](std::size_t i, std::size_t j) {
     for(int a = 0; a < 2; ++a)
-      for(int b = 0; b < 2; ++b) triplets.emplace_back(int(2 * i + std::size_t(a)), int(2 * j + std::size_t(b)), 0.);
+      for(int b = 0; b < 2; ++b)
+        triplets.emplace_back(int(2 * i + std::size_t(a)), int(2 * j + std::size_t(b)), 0.);
   };
-  for(std::size_t i = 0; i < n; ++i) {
+  for(std::size_t i = 0; i < n; ++i)
+  {
     add_block(i, i);
-    for(std::size_t k = system.offsets[i]; k < system.offsets[i + 1]; ++k) add_block(i, std::size_t(system.neighbors[k]));
+    for(std::size_t k = system.offsets[i]; k < system.offsets[i + 1]; ++k)
+      add_block(i, std::size_t(system.neighbors[k]));
   }
   matrix.resize(int(2 * n), int(2 * n));
   matrix.setFromTriplets(triplets.begin(), triplets.end());
@@ -137,78 +150,97 @@ inline void build_block_pattern(const Sphere_system& system, Eigen::SparseMatrix
     return compressed_slot(matrix, static_cast<Eigen::Index>(row), static_cast<Eigen::Index>(column));
   };
   auto block = [&](std::size_t i, std::size_t j) {
-    return std::array<std::size_t, 4>{slot(2 * i, 2 * j), slot(2 * i, 2 * j + 1), slot(2 * i + 1, 2 * j), slot(2 * i + 1, 2 * j + 1)};
+    return std::array<std::size_t, 4>{slot(2 * i, 2 * j), slot(2 * i, 2 * j + 1), slot(2 * i + 1, 2 * j),
+                                      slot(2 * i + 1, 2 * j + 1)};
   };
   diagonal_slots.resize(n);
   block_slots.resize(system.neighbors.size());
-  for(std::size_t i = 0; i < n; ++i) {
+  for(std::size_t i = 0; i < n; ++i)
+  {
     diagonal_slots[i] = block(i, i);
-    for(std::size_t k = system.offsets[i]; k < system.offsets[i + 1]; ++k) block_slots[k] = block(i, std::size_t(system.neighbors[k]));
+    for(std::size_t k = system.offsets[i]; k < system.offsets[i + 1]; ++k)
+      block_slots[k] = block(i, std::size_t(system.neighbors[k]));
   }
 }
 
-class Tangent_newton_system {
+class Tangent_newton_system
+{
 public:
-  explicit Tangent_newton_system(const Sphere_system& system) : system_(system) {}
+  explicit Tangent_newton_system(const Sphere_system& system) : m_system(system) {}
 
   // Assembles and factorizes at x; false when the factorization fails.
   bool factorize(const std::vector<Vector3>& x)
   {
-    const std::size_t n = system_.number_of_vertices;
-    if(rank_.empty()) build_pattern();
-    t1_.resize(n);
-    t2_.resize(n);
-    for(std::size_t i = 0; i < n; ++i) tangent_frame(x[i], t1_[i], t2_[i]);
+    const std::size_t n = m_system.number_of_vertices;
+    if(m_rank.empty())
+      build_pattern();
+    m_t1.resize(n);
+    m_t2.resize(n);
+    for(std::size_t i = 0; i < n; ++i)
+      tangent_frame(x[i], m_t1[i], m_t2[i]);
     // Gauge: vertex 0 does not move, and vertex g, the closest to 90 degrees from it, does not turn around it.
     std::size_t g = 0;
     double smallest = 2.;
-    for(std::size_t i = 1; i < n; ++i) {
+    for(std::size_t i = 1; i < n; ++i)
+    {
       const double c = std::abs(dot(x[i], x[0]));
-      if(c < smallest) { smallest = c; g = i; }
+      if(c < smallest)
+      {
+        smallest = c;
+        g = i;
+      }
     }
     Vector3 around = cross(x[0], x[g]);
     const bool has_gauge = g != 0 && length(around) > 1e-3;
-    if(has_gauge) {
-      t1_[g] = around * (1. / length(around));
-      t2_[g] = cross(x[g], t1_[g]);
+    if(has_gauge)
+    {
+      m_t1[g] = around * (1. / length(around));
+      m_t2[g] = cross(x[g], m_t1[g]);
     }
 
-    double* value = matrix_.valuePtr();
-    rhs_.resize(static_cast<Eigen::Index>(2 * n));
-    for(std::size_t i = 0; i < n; ++i) {
+    double* value = m_matrix.valuePtr();
+    m_rhs.resize(static_cast<Eigen::Index>(2 * n));
+    for(std::size_t i = 0; i < n; ++i)
+    {
       Vector3 force;
       double alpha = 0.;
-      force_and_alpha(system_, x, i, force, alpha);
-      for(std::size_t k = system_.offsets[i]; k < system_.offsets[i + 1]; ++k) {
-        const std::size_t j = static_cast<std::size_t>(system_.neighbors[k]);
-        const double w = system_.weights[k] * system_.row_sums[i];
-        if(rank_[i] < rank_[j]) {
-          const std::array<std::size_t, 4>& slot = block_slots_[k];
-          const std::array<double, 4> block = tangent_block(w, t1_[i], t2_[i], t1_[j], t2_[j]);
-          for(int b = 0; b < 4; ++b) value[slot[b]] = block[b];
+      force_and_alpha(m_system, x, i, force, alpha);
+      for(std::size_t k = m_system.offsets[i]; k < m_system.offsets[i + 1]; ++k)
+      {
+        const std::size_t j = static_cast<std::size_t>(m_system.neighbors[k]);
+        const double w = m_system.weights[k] * m_system.row_sums[i];
+        if(m_rank[i] < m_rank[j])
+        {
+          const std::array<std::size_t, 4>& slot = m_block_slots[k];
+          const std::array<double, 4> block = tangent_block(w, m_t1[i], m_t2[i], m_t1[j], m_t2[j]);
+          for(int b = 0; b < 4; ++b)
+            value[slot[b]] = block[b];
         }
       }
-      const std::array<std::size_t, 3>& d = diagonal_slots_[i];
+      const std::array<std::size_t, 3>& d = m_diagonal_slots[i];
       value[d[0]] = -alpha;
       value[d[1]] = 0.;
       value[d[2]] = -alpha;
-      rhs_[unknown(i, 0)] = -dot(t1_[i], force);
-      rhs_[unknown(i, 1)] = -dot(t2_[i], force);
+      m_rhs[unknown(i, 0)] = -dot(m_t1[i], force);
+      m_rhs[unknown(i, 1)] = -dot(m_t2[i], force);
     }
     // The right-hand sides of the three equations the gauge drops, kept for solve().
-    pinned_rows_.clear();
-    pinned_rows_.push_back({0, 0, rhs_[unknown(0, 0)]});
-    pinned_rows_.push_back({0, 1, rhs_[unknown(0, 1)]});
-    if(has_gauge) pinned_rows_.push_back({g, 0, rhs_[unknown(g, 0)]});
-    for(const Pinned_row& row : pinned_rows_) fix_unknown(row.vertex, row.component);
-    x_ = &x;
+    m_pinned_rows.clear();
+    m_pinned_rows.push_back({0, 0, m_rhs[unknown(0, 0)]});
+    m_pinned_rows.push_back({0, 1, m_rhs[unknown(0, 1)]});
+    if(has_gauge)
+      m_pinned_rows.push_back({g, 0, m_rhs[unknown(g, 0)]});
+    for(const Pinned_row& row : m_pinned_rows)
+      fix_unknown(row.vertex, row.component);
+    m_x = &x;
 
-    if(!analyzed_) {
-      ldlt_.analyzePattern(matrix_);
-      analyzed_ = true;
+    if(!m_analyzed)
+    {
+      m_ldlt.analyzePattern(m_matrix);
+      m_analyzed = true;
     }
-    ldlt_.factorize(matrix_);
-    return ldlt_.info() == Eigen::Success;
+    m_ldlt.factorize(m_matrix);
+    return m_ldlt.info() == Eigen::Success;
   }
 
   // Newton's step as tangent vectors; false when it is not finite.
@@ -224,101 +256,122 @@ public:
   // falls quadratically at the end: unit tests).
   bool solve(std::vector<Vector3>& step, bool consistent_rotations = true)
   {
-    const std::size_t n = system_.number_of_vertices;
-    Eigen::VectorXd solution = ldlt_.solve(rhs_);
-    if(ldlt_.info() != Eigen::Success || !solution.allFinite()) return false;
-    const std::size_t m = pinned_rows_.size();
-    if(consistent_rotations && m == 3 && x_ != nullptr) {
+    const std::size_t n = m_system.number_of_vertices;
+    Eigen::VectorXd solution = m_ldlt.solve(m_rhs);
+    if(m_ldlt.info() != Eigen::Success || !solution.allFinite())
+      return false;
+    const std::size_t m = m_pinned_rows.size();
+    if(consistent_rotations && m == 3 && m_x != nullptr)
+    {
       Eigen::Vector3d mismatch;
       for(std::size_t r = 0; r < 3; ++r)
-        mismatch[static_cast<Eigen::Index>(r)] = dropped_equation_residual(r, solution, pinned_rows_[r].rhs);
-      const std::vector<Vector3>& x = *x_;
+        mismatch[static_cast<Eigen::Index>(r)] = dropped_equation_residual(r, solution, m_pinned_rows[r].rhs);
+      const std::vector<Vector3>& x = *m_x;
       const Vector3 axis[3] = {Vector3(1, 0, 0), Vector3(0, 1, 0), Vector3(0, 0, 1)};
       Eigen::Matrix<double, Eigen::Dynamic, 3> rotation_solutions(solution.size(), 3);
       Eigen::Matrix3d coupling;
-      for(int k = 0; k < 3; ++k) {
+      for(int k = 0; k < 3; ++k)
+      {
         Eigen::VectorXd field(solution.size());
-        for(std::size_t i = 0; i < n; ++i) {
+        for(std::size_t i = 0; i < n; ++i)
+        {
           const Vector3 f = cross(axis[k], x[i]);
-          field[unknown(i, 0)] = -dot(t1_[i], f);
-          field[unknown(i, 1)] = -dot(t2_[i], f);
+          field[unknown(i, 0)] = -dot(m_t1[i], f);
+          field[unknown(i, 1)] = -dot(m_t2[i], f);
         }
         std::vector<double> field_rows(3);
-        for(std::size_t r = 0; r < 3; ++r) {
-          field_rows[r] = field[unknown(pinned_rows_[r].vertex, pinned_rows_[r].component)];
-          field[unknown(pinned_rows_[r].vertex, pinned_rows_[r].component)] = 0.;
-        }
-        rotation_solutions.col(k) = ldlt_.solve(field);
         for(std::size_t r = 0; r < 3; ++r)
-          coupling(static_cast<Eigen::Index>(r), k) = dropped_equation_residual(r, rotation_solutions.col(k), field_rows[r]);
+        {
+          field_rows[r] = field[unknown(m_pinned_rows[r].vertex, m_pinned_rows[r].component)];
+          field[unknown(m_pinned_rows[r].vertex, m_pinned_rows[r].component)] = 0.;
+        }
+        rotation_solutions.col(k) = m_ldlt.solve(field);
+        for(std::size_t r = 0; r < 3; ++r)
+          coupling(static_cast<Eigen::Index>(r), k) =
+              dropped_equation_residual(r, rotation_solutions.col(k), field_rows[r]);
       }
       const Eigen::Vector3d mu = coupling.fullPivLu().solve(-mismatch);
-      if(mu.allFinite() && rotation_solutions.allFinite()) solution += rotation_solutions * mu;
+      if(mu.allFinite() && rotation_solutions.allFinite())
+        solution += rotation_solutions * mu;
     }
     step.resize(n);
-    for(std::size_t i = 0; i < n; ++i) step[i] = solution[unknown(i, 0)] * t1_[i] + solution[unknown(i, 1)] * t2_[i];
+    for(std::size_t i = 0; i < n; ++i)
+      step[i] = solution[unknown(i, 0)] * m_t1[i] + solution[unknown(i, 1)] * m_t2[i];
     return true;
   }
 
 private:
-  struct Pinned_row {
+  struct Pinned_row
+  {
     std::size_t vertex;
     int component;
-    double rhs;  // -F of that equation
+    double rhs; // -F of that equation
   };
 
-  Eigen::Index unknown(std::size_t i, int component) const { return 2 * static_cast<Eigen::Index>(rank_[i]) + component; }
+  Eigen::Index unknown(std::size_t i, int component) const
+  {
+    return 2 * static_cast<Eigen::Index>(m_rank[i]) + component;
+  }
 
   // (J d)_row - rhs for the r-th dropped equation, with the full (ungauged) Jacobian row.
   template <typename Vector>
   double dropped_equation_residual(std::size_t r, const Vector& d, double rhs) const
   {
-    const std::vector<Vector3>& x = *x_;
-    const std::size_t v = pinned_rows_[r].vertex;
-    const Vector3& t = pinned_rows_[r].component == 0 ? t1_[v] : t2_[v];
+    const std::vector<Vector3>& x = *m_x;
+    const std::size_t v = m_pinned_rows[r].vertex;
+    const Vector3& t = m_pinned_rows[r].component == 0 ? m_t1[v] : m_t2[v];
     Vector3 pull;
     double alpha = 0.;
-    for(std::size_t k = system_.offsets[v]; k < system_.offsets[v + 1]; ++k) {
-      const std::size_t j = static_cast<std::size_t>(system_.neighbors[k]);
-      const double w = system_.weights[k] * system_.row_sums[v];
-      pull += w * (d[unknown(j, 0)] * t1_[j] + d[unknown(j, 1)] * t2_[j]);
+    for(std::size_t k = m_system.offsets[v]; k < m_system.offsets[v + 1]; ++k)
+    {
+      const std::size_t j = static_cast<std::size_t>(m_system.neighbors[k]);
+      const double w = m_system.weights[k] * m_system.row_sums[v];
+      pull += w * (d[unknown(j, 0)] * m_t1[j] + d[unknown(j, 1)] * m_t2[j]);
       alpha += w * (1. - 0.5 * squared_length(x[j] - x[v]));
     }
-    const double own = pinned_rows_[r].component == 0 ? d[unknown(v, 0)] : d[unknown(v, 1)];
+    const double own = m_pinned_rows[r].component == 0 ? d[unknown(v, 0)] : d[unknown(v, 1)];
     return dot(t, pull) - alpha * own - rhs;
   }
 
   // The upper triangle of the 2x2-block pattern in elimination order, and where every block's values sit.
   void build_pattern()
   {
-    const std::size_t n = system_.number_of_vertices;
-    rank_ = vertex_elimination_rank(system_);
+    const std::size_t n = m_system.number_of_vertices;
+    m_rank = vertex_elimination_rank(m_system);
     std::vector<Eigen::Triplet<double>> triplets;
-    triplets.reserve(3 * n + 2 * system_.neighbors.size());
-    for(std::size_t i = 0; i < n; ++i) {
+    triplets.reserve(3 * n + 2 * m_system.neighbors.size());
+    for(std::size_t i = 0; i < n; ++i)
+    {
       triplets.emplace_back(unknown(i, 0), unknown(i, 0), 0.);
       triplets.emplace_back(unknown(i, 0), unknown(i, 1), 0.);
       triplets.emplace_back(unknown(i, 1), unknown(i, 1), 0.);
-      for(std::size_t k = system_.offsets[i]; k < system_.offsets[i + 1]; ++k) {
-        const std::size_t j = static_cast<std::size_t>(system_.neighbors[k]);
-        if(rank_[i] > rank_[j]) continue;
+      for(std::size_t k = m_system.offsets[i]; k < m_system.offsets[i + 1]; ++k)
+      {
+        const std::size_t j = static_cast<std::size_t>(m_system.neighbors[k]);
+        if(m_rank[i] > m_rank[j])
+          continue;
         for(int a = 0; a < 2; ++a)
-          for(int b = 0; b < 2; ++b) triplets.emplace_back(unknown(i, a), unknown(j, b), 0.);
+          for(int b = 0; b < 2; ++b)
+            triplets.emplace_back(unknown(i, a), unknown(j, b), 0.);
       }
     }
-    matrix_.resize(static_cast<Eigen::Index>(2 * n), static_cast<Eigen::Index>(2 * n));
-    matrix_.setFromTriplets(triplets.begin(), triplets.end());
-    matrix_.makeCompressed();
-    auto slot = [&](Eigen::Index row, Eigen::Index column) { return compressed_slot(matrix_, row, column); };
-    diagonal_slots_.resize(n);
-    block_slots_.assign(system_.neighbors.size(), {0, 0, 0, 0});
-    for(std::size_t i = 0; i < n; ++i) {
-      diagonal_slots_[i] = {slot(unknown(i, 0), unknown(i, 0)), slot(unknown(i, 0), unknown(i, 1)), slot(unknown(i, 1), unknown(i, 1))};
-      for(std::size_t k = system_.offsets[i]; k < system_.offsets[i + 1]; ++k) {
-        const std::size_t j = static_cast<std::size_t>(system_.neighbors[k]);
-        if(rank_[i] > rank_[j]) continue;
-        block_slots_[k] = {slot(unknown(i, 0), unknown(j, 0)), slot(unknown(i, 0), unknown(j, 1)),
-                           slot(unknown(i, 1), unknown(j, 0)), slot(unknown(i, 1), unknown(j, 1))};
+    m_matrix.resize(static_cast<Eigen::Index>(2 * n), static_cast<Eigen::Index>(2 * n));
+    m_matrix.setFromTriplets(triplets.begin(), triplets.end());
+    m_matrix.makeCompressed();
+    auto slot = [&](Eigen::Index row, Eigen::Index column) { return compressed_slot(m_matrix, row, column); };
+    m_diagonal_slots.resize(n);
+    m_block_slots.assign(m_system.neighbors.size(), {0, 0, 0, 0});
+    for(std::size_t i = 0; i < n; ++i)
+    {
+      m_diagonal_slots[i] = {slot(unknown(i, 0), unknown(i, 0)), slot(unknown(i, 0), unknown(i, 1)),
+                             slot(unknown(i, 1), unknown(i, 1))};
+      for(std::size_t k = m_system.offsets[i]; k < m_system.offsets[i + 1]; ++k)
+      {
+        const std::size_t j = static_cast<std::size_t>(m_system.neighbors[k]);
+        if(m_rank[i] > m_rank[j])
+          continue;
+        m_block_slots[k] = {slot(unknown(i, 0), unknown(j, 0)), slot(unknown(i, 0), unknown(j, 1)),
+                            slot(unknown(i, 1), unknown(j, 0)), slot(unknown(i, 1), unknown(j, 1))};
       }
     }
   }
@@ -326,35 +379,39 @@ private:
   // Turns the unknown into d = 0: its row and column become those of the identity, its right-hand side 0.
   void fix_unknown(std::size_t v, int component)
   {
-    double* value = matrix_.valuePtr();
-    const std::array<std::size_t, 3>& d = diagonal_slots_[v];
+    double* value = m_matrix.valuePtr();
+    const std::array<std::size_t, 3>& d = m_diagonal_slots[v];
     value[component == 0 ? d[0] : d[2]] = 1.;
     value[d[1]] = 0.;
-    for(std::size_t k = system_.offsets[v]; k < system_.offsets[v + 1]; ++k) {
-      const std::size_t j = static_cast<std::size_t>(system_.neighbors[k]);
-      if(rank_[v] < rank_[j]) {
-        value[block_slots_[k][2 * component]] = 0.;      // row `component` of the block (v, j)
-        value[block_slots_[k][2 * component + 1]] = 0.;
-      } else {
-        const std::array<std::size_t, 4>& slot = block_slots_[system_.reverse[k]];
-        value[slot[component]] = 0.;                      // column `component` of the block (j, v)
+    for(std::size_t k = m_system.offsets[v]; k < m_system.offsets[v + 1]; ++k)
+    {
+      const std::size_t j = static_cast<std::size_t>(m_system.neighbors[k]);
+      if(m_rank[v] < m_rank[j])
+      {
+        value[m_block_slots[k][2 * component]] = 0.; // row `component` of the block (v, j)
+        value[m_block_slots[k][2 * component + 1]] = 0.;
+      }
+      else
+      {
+        const std::array<std::size_t, 4>& slot = m_block_slots[m_system.reverse[k]];
+        value[slot[component]] = 0.; // column `component` of the block (j, v)
         value[slot[2 + component]] = 0.;
       }
     }
-    rhs_[unknown(v, component)] = 0.;
+    m_rhs[unknown(v, component)] = 0.;
   }
 
-  const Sphere_system& system_;
-  std::vector<int> rank_;
-  Eigen::SparseMatrix<double> matrix_;
-  std::vector<std::array<std::size_t, 3>> diagonal_slots_;
-  std::vector<std::array<std::size_t, 4>> block_slots_;
-  std::vector<Vector3> t1_, t2_;
-  Eigen::VectorXd rhs_;
-  std::vector<Pinned_row> pinned_rows_;
-  const std::vector<Vector3>* x_ = nullptr;  // the positions of the last factorize()
-  bool analyzed_ = false;
-  Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>, Eigen::Upper, Eigen::NaturalOrdering<int>> ldlt_;
+  const Sphere_system& m_system;
+  std::vector<int> m_rank;
+  Eigen::SparseMatrix<double> m_matrix;
+  std::vector<std::array<std::size_t, 3>> m_diagonal_slots;
+  std::vector<std::array<std::size_t, 4>> m_block_slots;
+  std::vector<Vector3> m_t1, m_t2;
+  Eigen::VectorXd m_rhs;
+  std::vector<Pinned_row> m_pinned_rows;
+  const std::vector<Vector3>* m_x = nullptr; // the positions of the last factorize()
+  bool m_analyzed = false;
+  Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>, Eigen::Upper, Eigen::NaturalOrdering<int>> m_ldlt;
 };
 
 } // namespace internal

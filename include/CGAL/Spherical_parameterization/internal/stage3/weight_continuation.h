@@ -27,9 +27,10 @@ namespace CGAL {
 namespace Spherical_parameterization {
 namespace internal {
 
-struct Continuation_report {
-  bool reached = false;        // the balanced solution of the target weights was reached
-  double last_parameter = 0.;  // the largest s whose balanced solution was found (bijective)
+struct Continuation_report
+{
+  bool reached = false;       // the balanced solution of the target weights was reached
+  double last_parameter = 0.; // the largest s whose balanced solution was found (bijective)
   std::size_t newton_steps = 0;
   bool out_of_time = false;
   bool cancelled = false;
@@ -38,13 +39,16 @@ struct Continuation_report {
 // The raw weights (1 - s) + s w_ij of the target system, normalized as every Sphere_system is.
 inline void blend_with_tutte(const Sphere_system& target, double s, Sphere_system& blend)
 {
-  for(std::size_t i = 0; i < target.number_of_vertices; ++i) {
+  for(std::size_t i = 0; i < target.number_of_vertices; ++i)
+  {
     double sum = 0.;
-    for(std::size_t k = target.offsets[i]; k < target.offsets[i + 1]; ++k) {
+    for(std::size_t k = target.offsets[i]; k < target.offsets[i + 1]; ++k)
+    {
       blend.weights[k] = (1. - s) + s * target.weights[k] * target.row_sums[i];
       sum += blend.weights[k];
     }
-    for(std::size_t k = target.offsets[i]; k < target.offsets[i + 1]; ++k) blend.weights[k] /= sum;
+    for(std::size_t k = target.offsets[i]; k < target.offsets[i + 1]; ++k)
+      blend.weights[k] /= sum;
     blend.row_sums[i] = sum;
   }
   blend.symmetric = true;
@@ -59,18 +63,21 @@ inline Continuation_report weight_continuation(const Sphere_system& target, std:
 {
   // Tutte's solution is found most reliably from stage 1's initial guess (not from an iterate balanced for
   // other weights).
-  if(initial_guess != nullptr && initial_guess->size() == x.size()) x = *initial_guess;
+  if(initial_guess != nullptr && initial_guess->size() == x.size())
+    x = *initial_guess;
   Continuation_report report;
   Sphere_system blend = target;
   Iteration_options path = options;
   // The imbalance is scale-free; the paper's Res needs to be far below the tolerance for a good start.
-  if(options.convergence_test == Convergence_test::PAPER_RESIDUAL) path.tolerance = std::min(options.tolerance, path_tolerance);
+  if(options.convergence_test == Convergence_test::PAPER_RESIDUAL)
+    path.tolerance = std::min(options.tolerance, path_tolerance);
   std::vector<Vector3> saved;
   auto solve_at = [&](double s) {
     blend_with_tutte(target, s, blend);
     Sphere_state state(blend, x);
     // Gauss-Seidel first, as in stage 2, then Newton.
-    if(s == 0.) projected_gauss_seidel(state, path, clock);
+    if(s == 0.)
+      projected_gauss_seidel(state, path, clock);
     Mobius_newton_statistics statistics;
     const Iteration_report newton = mobius_newton(state, path, clock, &statistics, patience);
     report.newton_steps += statistics.newton_steps;
@@ -78,18 +85,24 @@ inline Continuation_report weight_continuation(const Sphere_system& target, std:
     report.cancelled = report.cancelled || newton.cancelled;
     return newton.converged && !statistics.gave_up;
   };
-  if(!solve_at(0.)) return report;
+  if(!solve_at(0.))
+    return report;
   double s = 0., step = 0.25;
-  while(s < 1. && !report.out_of_time && !report.cancelled) {
+  while(s < 1. && !report.out_of_time && !report.cancelled)
+  {
     const double next = std::min(1., s + step);
     saved = x;
-    if(solve_at(next)) {
+    if(solve_at(next))
+    {
       s = next;
       step = std::min(1., 1.5 * step);
-    } else {
+    }
+    else
+    {
       x = saved;
       step *= 0.5;
-      if(step < 1e-3) break;
+      if(step < 1e-3)
+        break;
     }
   }
   report.last_parameter = s;
