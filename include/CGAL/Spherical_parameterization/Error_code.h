@@ -10,6 +10,8 @@
 #ifndef CGAL_SPHERICAL_PARAMETERIZATION_ERROR_CODE_H
 #define CGAL_SPHERICAL_PARAMETERIZATION_ERROR_CODE_H
 
+#include <cstddef>
+
 namespace CGAL {
 namespace Spherical_parameterization {
 
@@ -40,100 +42,76 @@ enum class Error_code
   CANCELLED             ///< The `progress_callback` asked to stop.
 };
 
+namespace internal {
+
+struct Error_code_text
+{
+  Error_code code;
+  const char* name;
+  const char* message;
+};
+
+// One row per enumerator, in their order (checked below).
+inline constexpr Error_code_text error_code_texts[] = {
+    {Error_code::OK, "OK", "Success: converged and certified bijective"},
+    {Error_code::EMPTY_MESH, "EMPTY_MESH", "The mesh has no face"},
+    {Error_code::NOT_TRIANGLE_MESH, "NOT_TRIANGLE_MESH", "The mesh has a face that is not a triangle"},
+    {Error_code::DEGENERATE_FACE, "DEGENERATE_FACE",
+     "A face uses the same vertex more than once, or a vertex that does not exist"},
+    {Error_code::NON_FINITE_COORDINATES, "NON_FINITE_COORDINATES", "A vertex has a NaN or infinite coordinate"},
+    {Error_code::ISOLATED_VERTEX, "ISOLATED_VERTEX", "A vertex belongs to no face"},
+    {Error_code::HAS_BORDER, "HAS_BORDER", "The mesh is not closed: it has boundary loops"},
+    {Error_code::NON_MANIFOLD_EDGE, "NON_MANIFOLD_EDGE", "An edge is shared by more than two faces"},
+    {Error_code::NON_MANIFOLD_VERTEX, "NON_MANIFOLD_VERTEX",
+     "The faces around a vertex do not form a single fan (pinched vertex)"},
+    {Error_code::INCONSISTENT_ORIENTATION, "INCONSISTENT_ORIENTATION", "The faces are not consistently oriented"},
+    {Error_code::MULTIPLE_COMPONENTS, "MULTIPLE_COMPONENTS", "The mesh has more than one connected component"},
+    {Error_code::GENUS_NOT_ZERO, "GENUS_NOT_ZERO", "The mesh is not a topological sphere (genus > 0)"},
+    {Error_code::INVALID_WEIGHTS, "INVALID_WEIGHTS",
+     "A weight is not finite or the weights of a vertex do not sum to a positive value"},
+    {Error_code::PARTITION_FAILED, "PARTITION_FAILED", "The mesh could not be split into two topological disks"},
+    {Error_code::DISK_EMBEDDING_FAILED, "DISK_EMBEDDING_FAILED", "The planar embedding of a half of the mesh failed"},
+    {Error_code::NOT_CONVERGED, "NOT_CONVERGED", "Not converged within the iteration caps or the time budget"},
+    {Error_code::NOT_BIJECTIVE, "NOT_BIJECTIVE",
+     "The map converged but is not bijective (a triangle not positively oriented, or a degree other than 1)"},
+    {Error_code::NO_BALANCED_SOLUTION, "NO_BALANCED_SOLUTION",
+     "The connectivity is not inscribable: the balance equations have no bijective solution for positive weights"},
+    {Error_code::CANCELLED, "CANCELLED", "Cancelled by the progress callback"},
+};
+
+inline constexpr std::size_t number_of_error_codes = sizeof(error_code_texts) / sizeof(error_code_texts[0]);
+
+constexpr bool error_code_texts_in_order()
+{
+  for(std::size_t k = 0; k < number_of_error_codes; ++k)
+    if(static_cast<std::size_t>(error_code_texts[k].code) != k)
+      return false;
+  return static_cast<std::size_t>(Error_code::CANCELLED) + 1 == number_of_error_codes;
+}
+static_assert(error_code_texts_in_order(), "one row per Error_code, in the enumerators' order");
+
+inline const Error_code_text* find_error_code_text(Error_code code)
+{
+  const std::size_t k = static_cast<std::size_t>(code);
+  return k < number_of_error_codes ? &error_code_texts[k] : nullptr;
+}
+
+} // namespace internal
+
 /// \ingroup PkgSphericalParameterizationRef
 /// A one-line explanation of `code`.
 inline const char* get_error_message(Error_code code)
 {
-  switch(code)
-  {
-  case Error_code::OK:
-    return "Success: converged and certified bijective";
-  case Error_code::EMPTY_MESH:
-    return "The mesh has no face";
-  case Error_code::NOT_TRIANGLE_MESH:
-    return "The mesh has a face that is not a triangle";
-  case Error_code::DEGENERATE_FACE:
-    return "A face uses the same vertex more than once, or a vertex that does not exist";
-  case Error_code::NON_FINITE_COORDINATES:
-    return "A vertex has a NaN or infinite coordinate";
-  case Error_code::ISOLATED_VERTEX:
-    return "A vertex belongs to no face";
-  case Error_code::HAS_BORDER:
-    return "The mesh is not closed: it has boundary loops";
-  case Error_code::NON_MANIFOLD_EDGE:
-    return "An edge is shared by more than two faces";
-  case Error_code::NON_MANIFOLD_VERTEX:
-    return "The faces around a vertex do not form a single fan (pinched vertex)";
-  case Error_code::INCONSISTENT_ORIENTATION:
-    return "The faces are not consistently oriented";
-  case Error_code::MULTIPLE_COMPONENTS:
-    return "The mesh has more than one connected component";
-  case Error_code::GENUS_NOT_ZERO:
-    return "The mesh is not a topological sphere (genus > 0)";
-  case Error_code::INVALID_WEIGHTS:
-    return "A weight is not finite or the weights of a vertex do not sum to a positive value";
-  case Error_code::PARTITION_FAILED:
-    return "The mesh could not be split into two topological disks";
-  case Error_code::DISK_EMBEDDING_FAILED:
-    return "The planar embedding of a half of the mesh failed";
-  case Error_code::NOT_CONVERGED:
-    return "Not converged within the iteration caps or the time budget";
-  case Error_code::NOT_BIJECTIVE:
-    return "The map converged but is not bijective (a triangle not positively oriented, or a degree other than 1)";
-  case Error_code::NO_BALANCED_SOLUTION:
-    return "The connectivity is not inscribable: the balance equations have no bijective solution for positive weights";
-  case Error_code::CANCELLED:
-    return "Cancelled by the progress callback";
-  }
-  return "Unknown error code";
+  const internal::Error_code_text* text = internal::find_error_code_text(code);
+  return text ? text->message : "Unknown error code";
 }
 
 /// \ingroup PkgSphericalParameterizationRef
 /// The enumerator's name, such as `"GENUS_NOT_ZERO"` (used by the command line and the tests).
 inline const char* get_error_name(Error_code code)
 {
-  switch(code)
-  {
-  case Error_code::OK:
-    return "OK";
-  case Error_code::EMPTY_MESH:
-    return "EMPTY_MESH";
-  case Error_code::NOT_TRIANGLE_MESH:
-    return "NOT_TRIANGLE_MESH";
-  case Error_code::DEGENERATE_FACE:
-    return "DEGENERATE_FACE";
-  case Error_code::NON_FINITE_COORDINATES:
-    return "NON_FINITE_COORDINATES";
-  case Error_code::ISOLATED_VERTEX:
-    return "ISOLATED_VERTEX";
-  case Error_code::HAS_BORDER:
-    return "HAS_BORDER";
-  case Error_code::NON_MANIFOLD_EDGE:
-    return "NON_MANIFOLD_EDGE";
-  case Error_code::NON_MANIFOLD_VERTEX:
-    return "NON_MANIFOLD_VERTEX";
-  case Error_code::INCONSISTENT_ORIENTATION:
-    return "INCONSISTENT_ORIENTATION";
-  case Error_code::MULTIPLE_COMPONENTS:
-    return "MULTIPLE_COMPONENTS";
-  case Error_code::GENUS_NOT_ZERO:
-    return "GENUS_NOT_ZERO";
-  case Error_code::INVALID_WEIGHTS:
-    return "INVALID_WEIGHTS";
-  case Error_code::PARTITION_FAILED:
-    return "PARTITION_FAILED";
-  case Error_code::DISK_EMBEDDING_FAILED:
-    return "DISK_EMBEDDING_FAILED";
-  case Error_code::NOT_CONVERGED:
-    return "NOT_CONVERGED";
-  case Error_code::NOT_BIJECTIVE:
-    return "NOT_BIJECTIVE";
-  case Error_code::NO_BALANCED_SOLUTION:
-    return "NO_BALANCED_SOLUTION";
-  case Error_code::CANCELLED:
-    return "CANCELLED";
-  }
-  return "UNKNOWN";
+  const internal::Error_code_text* text = internal::find_error_code_text(code);
+  return text ? text->name : "UNKNOWN";
 }
 
 } // namespace Spherical_parameterization

@@ -54,24 +54,13 @@ enum class File_status
 /// The enumerator's name, e.g. `"TRUNCATED"`.
 inline const char* get_file_status_name(File_status status)
 {
-  switch(status)
-  {
-  case File_status::OK:
-    return "OK";
-  case File_status::CANNOT_OPEN:
-    return "CANNOT_OPEN";
-  case File_status::EMPTY_FILE:
-    return "EMPTY_FILE";
-  case File_status::UNKNOWN_FORMAT:
-    return "UNKNOWN_FORMAT";
-  case File_status::TRUNCATED:
-    return "TRUNCATED";
-  case File_status::INVALID_DATA:
-    return "INVALID_DATA";
-  case File_status::GZIP_NOT_SUPPORTED:
-    return "GZIP_NOT_SUPPORTED";
-  }
-  return "UNKNOWN";
+  // In the enumerators' order.
+  static const char* const names[] = {"OK",        "CANNOT_OPEN",  "EMPTY_FILE",        "UNKNOWN_FORMAT",
+                                      "TRUNCATED", "INVALID_DATA", "GZIP_NOT_SUPPORTED"};
+  static_assert(sizeof(names) / sizeof(names[0]) == static_cast<std::size_t>(File_status::GZIP_NOT_SUPPORTED) + 1,
+                "one name per File_status");
+  const std::size_t k = static_cast<std::size_t>(status);
+  return k < sizeof(names) / sizeof(names[0]) ? names[k] : "UNKNOWN";
 }
 
 /// \ingroup PkgSphericalParameterizationRef

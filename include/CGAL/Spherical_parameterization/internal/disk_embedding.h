@@ -179,35 +179,24 @@ bool embed_one_disk(const Mesh_arrays& mesh, const Sphere_system& system, const 
   // divide by zero, or fail its assertions: the disks then take the clamped weights of the sphere stage.
   const Weighting disk_weighting =
       weighting != Weighting::UNIFORM && system.clamped_weights > 0 ? Weighting::USER_MAP : weighting;
+  auto run = [&](auto&& parameterizer) { status = parameterizer.parameterize(half, bhd, uvmap, vimap, vpmap); };
   switch(disk_weighting)
   {
   case Weighting::UNIFORM:
-  {
-    SMP::Barycentric_mapping_parameterizer_3<Half_mesh, Prescribed_border_parameterizer, SolverTraits> p(
-        border_parameterizer, solver);
-    status = p.parameterize(half, bhd, uvmap, vimap, vpmap);
+    run(SMP::Barycentric_mapping_parameterizer_3<Half_mesh, Prescribed_border_parameterizer, SolverTraits>(
+        border_parameterizer, solver));
     break;
-  }
   case Weighting::MEAN_VALUE:
-  {
-    SMP::Mean_value_coordinates_parameterizer_3<Half_mesh, Prescribed_border_parameterizer, SolverTraits> p(
-        border_parameterizer, solver);
-    status = p.parameterize(half, bhd, uvmap, vimap, vpmap);
+    run(SMP::Mean_value_coordinates_parameterizer_3<Half_mesh, Prescribed_border_parameterizer, SolverTraits>(
+        border_parameterizer, solver));
     break;
-  }
   case Weighting::COTANGENT:
-  {
-    SMP::Discrete_conformal_map_parameterizer_3<Half_mesh, Prescribed_border_parameterizer, SolverTraits> p(
-        border_parameterizer, solver);
-    status = p.parameterize(half, bhd, uvmap, vimap, vpmap);
+    run(SMP::Discrete_conformal_map_parameterizer_3<Half_mesh, Prescribed_border_parameterizer, SolverTraits>(
+        border_parameterizer, solver));
     break;
-  }
   case Weighting::USER_MAP:
-  {
-    Weight_table_parameterizer_3<SolverTraits> p(border_parameterizer, solver, &system, &global_index);
-    status = p.parameterize(half, bhd, uvmap, vimap, vpmap);
+    run(Weight_table_parameterizer_3<SolverTraits>(border_parameterizer, solver, &system, &global_index));
     break;
-  }
   }
   if(status != SMP::OK)
     return false;

@@ -45,19 +45,22 @@ struct Compressed_row_matrix
   }
 };
 
+// (A x)_i
+inline double row_product(const Compressed_row_matrix& A, Index i, const double* x)
+{
+  const Index* column = A.column.data();
+  const double* value = A.value.data();
+  double sum = 0.;
+  for(Index k = A.row_start[i]; k < A.row_start[i + 1]; ++k)
+    sum += value[k] * x[column[k]];
+  return sum;
+}
+
 // y = A x
 inline void multiply(const Compressed_row_matrix& A, const double* x, double* y)
 {
-  const Index* row_start = A.row_start.data();
-  const Index* column = A.column.data();
-  const double* value = A.value.data();
   for(Index i = 0; i < A.number_of_rows; ++i)
-  {
-    double sum = 0.;
-    for(Index k = row_start[i]; k < row_start[i + 1]; ++k)
-      sum += value[k] * x[column[k]];
-    y[i] = sum;
-  }
+    y[i] = row_product(A, i, x);
 }
 
 // r = b - A x
@@ -78,16 +81,8 @@ inline void residual(const Compressed_row_matrix& A, const double* x, const doub
 // y += A x
 inline void multiply_add(const Compressed_row_matrix& A, const double* x, double* y)
 {
-  const Index* row_start = A.row_start.data();
-  const Index* column = A.column.data();
-  const double* value = A.value.data();
   for(Index i = 0; i < A.number_of_rows; ++i)
-  {
-    double sum = 0.;
-    for(Index k = row_start[i]; k < row_start[i + 1]; ++k)
-      sum += value[k] * x[column[k]];
-    y[i] += sum;
-  }
+    y[i] += row_product(A, i, x);
 }
 
 // Counting-sort transpose: columns of the result come out sorted.

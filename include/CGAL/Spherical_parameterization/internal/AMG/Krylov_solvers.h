@@ -15,6 +15,7 @@
 #include <CGAL/Spherical_parameterization/internal/AMG/Compressed_row_matrix.h>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <vector>
 
@@ -42,6 +43,16 @@ struct Krylov_workspace
       vectors[k].assign(n, 0.);
     return vectors[k].data();
   }
+
+  // The first N vectors, each of size n.
+  template <std::size_t N>
+  std::array<double*, N> first(std::size_t n)
+  {
+    std::array<double*, N> v;
+    for(std::size_t k = 0; k < N; ++k)
+      v[k] = vector(k, n);
+    return v;
+  }
 };
 
 inline double dot(const double* x, const double* y, Index n)
@@ -55,6 +66,21 @@ inline double dot(const double* x, const double* y, Index n)
 inline double norm(const double* x, Index n)
 {
   return std::sqrt(dot(x, x, n));
+}
+
+// The stopping rule the solvers share, on the true residual r = b - A x (the recursive one drifts near 1e-10
+// relative accuracy): true when the iterations end here, converged or not, with `result` set.
+inline bool ends_at_true_residual(const Compressed_row_matrix& A, const double* x, const double* b, double* r,
+                                  double target_residual_norm, double reference_norm, int max_iterations,
+                                  Krylov_result& result, double& residual_norm)
+{
+  residual(A, x, b, r);
+  residual_norm = norm(r, A.number_of_rows);
+  result.relative_residual = residual_norm / reference_norm;
+  if(!std::isfinite(residual_norm))
+    return true;
+  result.converged = residual_norm <= target_residual_norm;
+  return result.converged || result.iterations >= max_iterations;
 }
 
 // target_residual_norm: absolute bound on ||b - A x||; x holds the initial guess.
@@ -77,18 +103,8 @@ Krylov_result conjugate_gradient(const Compressed_row_matrix& A, const double* b
   {
     if(restart)
     {
-      // (Re)start from the true residual: the recursive one drifts near 1e-10 relative accuracy.
-      residual(A, x, b, r);
-      const double residual_norm = norm(r, n);
-      result.relative_residual = residual_norm / reference_norm;
-      if(!std::isfinite(residual_norm))
-        return result;
-      if(residual_norm <= target_residual_norm)
-      {
-        result.converged = true;
-        return result;
-      }
-      if(result.iterations >= max_iterations)
+      double residual_norm = 0.;
+      if(ends_at_true_residual(A, x, b, r, target_residual_norm, reference_norm, max_iterations, result, residual_norm))
         return result;
       apply_preconditioner(r, z);
       std::copy(z, z + n, p);
@@ -131,28 +147,13 @@ Krylov_result bicgstab(const Compressed_row_matrix& A, const double* b, double* 
                        Krylov_workspace& workspace)
 {
   const Index n = A.number_of_rows;
-  double* r = workspace.vector(0, n);
-  double* r0 = workspace.vector(1, n);
-  double* p = workspace.vector(2, n);
-  double* v = workspace.vector(3, n);
-  double* p_hat = workspace.vector(4, n);
-  double* s_hat = workspace.vector(5, n);
-  double* t = workspace.vector(6, n);
+  const auto [r, r0, p, v, p_hat, s_hat, t] = workspace.first<7>(n);
   Krylov_result result;
 
   while(true)
   {
-    residual(A, x, b, r);
-    double residual_norm = norm(r, n);
-    result.relative_residual = residual_norm / reference_norm;
-    if(!std::isfinite(residual_norm))
-      return result;
-    if(residual_norm <= target_residual_norm)
-    {
-      result.converged = true;
-      return result;
-    }
-    if(result.iterations >= max_iterations)
+    double residual_norm = 0.;
+    if(ends_at_true_residual(A, x, b, r, target_residual_norm, reference_norm, max_iterations, result, residual_norm))
       return result;
 
     std::copy(r, r + n, r0);
@@ -222,17 +223,8 @@ Krylov_result gmres(const Compressed_row_matrix& A, const double* b, double* x, 
 
   while(true)
   {
-    residual(A, x, b, r);
-    const double residual_norm = norm(r, n);
-    result.relative_residual = residual_norm / reference_norm;
-    if(!std::isfinite(residual_norm))
-      return result;
-    if(residual_norm <= target_residual_norm)
-    {
-      result.converged = true;
-      return result;
-    }
-    if(result.iterations >= max_iterations)
+    double residual_norm = 0.;
+    if(ends_at_true_residual(A, x, b, r, target_residual_norm, reference_norm, max_iterations, result, residual_norm))
       return result;
 
     double* v0 = workspace.vector(2, n);
@@ -309,13 +301,7 @@ template <class Operator, class Preconditioner>
 Krylov_result minres(Operator& apply_operator, Preconditioner& apply_preconditioner, const double* b, double* x,
                      Index n, double relative_tolerance, int max_iterations, Krylov_workspace& workspace)
 {
-  double* r1 = workspace.vector(0, n);
-  double* r2 = workspace.vector(1, n);
-  double* y = workspace.vector(2, n);
-  double* v = workspace.vector(3, n);
-  double* w = workspace.vector(4, n);
-  double* w1 = workspace.vector(5, n);
-  double* w2 = workspace.vector(6, n);
+  auto [r1, r2, y, v, w, w1, w2] = workspace.first<7>(n);
   Krylov_result result;
   std::fill(x, x + n, 0.);
   std::fill(w, w + n, 0.);
