@@ -11,6 +11,8 @@
 #define CGAL_SPHERICAL_PARAMETERIZATION_INTERNAL_VECTOR3_H
 
 #include <cmath>
+#include <cstddef>
+#include <vector>
 
 namespace CGAL {
 namespace Spherical_parameterization {
@@ -87,6 +89,15 @@ inline void tangent_frame(const Vector3& x, Vector3& t1, Vector3& t2)
   t1 = cross(x, helper);
   t1 *= 1. / length(t1);
   t2 = cross(x, t1);
+}
+
+// The tangent frames at every point of x.
+inline void tangent_frames(const std::vector<Vector3>& x, std::vector<Vector3>& t1, std::vector<Vector3>& t2)
+{
+  t1.resize(x.size());
+  t2.resize(x.size());
+  for(std::size_t i = 0; i < x.size(); ++i)
+    tangent_frame(x[i], t1[i], t2[i]);
 }
 
 } // namespace internal

@@ -37,9 +37,9 @@
 #include <CGAL/Spherical_parameterization/internal/Vector3.h>
 #include <CGAL/Spherical_parameterization/internal/iteration_driver.h>
 #include <CGAL/Spherical_parameterization/internal/stage3/mobius.h>
+#include <CGAL/Spherical_parameterization/internal/stage3/sparse_factorization.h>
 
 #include <Eigen/Sparse>
-#include <Eigen/SparseLU>
 
 #include <algorithm>
 #include <array>
@@ -173,13 +173,7 @@ public:
   {
     const std::size_t n = m_system.number_of_vertices;
     const Eigen::SparseMatrix<double> hessian = assemble_hessian(x, mu);
-    if(!m_analyzed)
-    {
-      m_lu.analyzePattern(hessian);
-      m_analyzed = true;
-    }
-    m_lu.factorize(hessian);
-    if(m_lu.info() != Eigen::Success)
+    if(!m_lu.factorize(hessian))
       return false;
     Eigen::VectorXd rhs(static_cast<Eigen::Index>(2 * n));
     for(std::size_t i = 0; i < n; ++i)
@@ -187,7 +181,7 @@ public:
       rhs[static_cast<Eigen::Index>(2 * i)] = -dot(m_t1[i], g[i]);
       rhs[static_cast<Eigen::Index>(2 * i + 1)] = -dot(m_t2[i], g[i]);
     }
-    const Eigen::VectorXd d = m_lu.solve(rhs);
+    const Eigen::VectorXd d = m_lu.solver().solve(rhs);
     if(!d.allFinite())
       return false;
     step.resize(n);
@@ -202,10 +196,7 @@ public:
   Eigen::SparseMatrix<double> assemble_hessian(const std::vector<Vector3>& x, double mu)
   {
     const std::size_t n = m_system.number_of_vertices;
-    m_t1.resize(n);
-    m_t2.resize(n);
-    for(std::size_t i = 0; i < n; ++i)
-      tangent_frame(x[i], m_t1[i], m_t2[i]);
+    tangent_frames(x, m_t1, m_t2);
     std::vector<Eigen::Triplet<double>> entries;
     entries.reserve(8 * n + 4 * m_system.neighbors.size() + 36 * m_system.triangles.size());
     double largest_diagonal = 0.;
@@ -302,8 +293,7 @@ private:
   double m_rotation_shift;
   std::vector<double> m_scale;
   std::vector<Vector3> m_t1, m_t2;
-  bool m_analyzed = false;
-  Eigen::SparseLU<Eigen::SparseMatrix<double>, Eigen::COLAMDOrdering<int>> m_lu;
+  Sparse_lu m_lu;
 };
 
 // The interior-point iterations from a map with every face positive (state.invalid_faces() == 0), for symmetric

@@ -24,18 +24,15 @@
 #ifndef CGAL_SPHERICAL_PARAMETERIZATION_INTERNAL_STAGE3_GLOBAL_NEWTON_H
 #define CGAL_SPHERICAL_PARAMETERIZATION_INTERNAL_STAGE3_GLOBAL_NEWTON_H
 
-#include <CGAL/Spherical_parameterization/internal/deferred_stop_signals.h>
 #include <CGAL/Spherical_parameterization/internal/sphere_iterations.h>
 #include <CGAL/Spherical_parameterization/internal/stage3/constrained_balance.h>
 #include <CGAL/Spherical_parameterization/internal/stage3/imbalance_least_squares.h>
 #include <CGAL/Spherical_parameterization/internal/stage3/mobius_newton.h>
+#include <CGAL/Spherical_parameterization/internal/stage3/sparse_factorization.h>
 #include <CGAL/Spherical_parameterization/internal/stage3/tangent_newton_system.h>
 #include <CGAL/Spherical_parameterization/internal/stage3/weight_continuation.h>
 
 #include <Eigen/Sparse>
-#include <Eigen/SparseLU>
-#include <Eigen/SparseCholesky>
-#include <Eigen/MetisSupport>
 
 #include <algorithm>
 #include <array>
@@ -62,10 +59,7 @@ public:
     m_cancelled = false;
     const std::size_t n = m_system.number_of_vertices;
     const std::vector<Vector3>& x = state.positions();
-    m_t1.resize(n);
-    m_t2.resize(n);
-    for(std::size_t i = 0; i < n; ++i)
-      tangent_frame(x[i], m_t1[i], m_t2[i]);
+    tangent_frames(x, m_t1, m_t2);
 
     if(m_jacobian.rows() != Eigen::Index(2 * n))
       build_pattern();
@@ -119,17 +113,9 @@ public:
           normal.coeffRef(k, k) += shift;
         // The pattern of J^T J is the same at every step: order it (METIS) once, factorize every time (ordering it
         // at every attempt was slow: the manual's Method section).
-        if(!m_ldlt_analyzed || normal.nonZeros() != m_analyzed_nonzeros)
-        {
-          const Deferred_stop_signals deferred; // METIS orders the unknowns (see deferred_stop_signals.h)
-          m_ldlt.analyzePattern(normal);
-          m_ldlt_analyzed = true;
-          m_analyzed_nonzeros = normal.nonZeros();
-        }
-        m_ldlt.factorize(normal);
-        if(m_ldlt.info() != Eigen::Success)
+        if(!m_ldlt.factorize(normal))
           return false;
-        delta = m_ldlt.solve(jacobian.transpose() * rhs);
+        delta = m_ldlt.solver().solve(jacobian.transpose() * rhs);
         if(!delta.allFinite())
           return false;
       }
@@ -204,26 +190,17 @@ private:
   {
     if(m_system.symmetric)
     {
-      // The pattern never changes: order and analyse once, factorize at every step.
-      if(!m_ldlt_analyzed)
+      if(m_ldlt.factorize(jacobian))
       {
-        const Deferred_stop_signals deferred; // METIS orders the unknowns (see deferred_stop_signals.h)
-        m_ldlt.analyzePattern(jacobian);
-        m_ldlt_analyzed = true;
-      }
-      m_ldlt.factorize(jacobian);
-      if(m_ldlt.info() == Eigen::Success)
-      {
-        delta = m_ldlt.solve(rhs);
-        if(m_ldlt.info() == Eigen::Success && delta.allFinite())
+        delta = m_ldlt.solver().solve(rhs);
+        if(m_ldlt.solver().info() == Eigen::Success && delta.allFinite())
           return true;
       }
     }
-    m_lu.compute(jacobian);
-    if(m_lu.info() != Eigen::Success)
+    if(!m_lu.factorize(jacobian))
       return false;
-    delta = m_lu.solve(rhs);
-    return m_lu.info() == Eigen::Success && delta.allFinite();
+    delta = m_lu.solver().solve(rhs);
+    return m_lu.solver().info() == Eigen::Success && delta.allFinite();
   }
 
   // The Jacobian's pattern (2x2 blocks of the vertex adjacency plus the diagonal) and, for every block, where its
@@ -235,14 +212,12 @@ private:
   bool m_preserve_bijectivity;
   Eigen::SparseMatrix<double> m_jacobian;
   std::vector<std::array<std::size_t, 4>> m_diagonal_slots, m_block_slots;
-  bool m_ldlt_analyzed = false;
   bool m_cancelled = false;
-  Eigen::Index m_analyzed_nonzeros = 0; // of the normal matrix J^T J (non-symmetric weights)
-  double m_marquardt;                   // relative Levenberg-Marquardt shift (non-symmetric weights)
-  double m_damping;                     // relative diagonal shift: keeps the rotations from blowing up the step
+  double m_marquardt; // relative Levenberg-Marquardt shift (non-symmetric weights)
+  double m_damping;   // relative diagonal shift: keeps the rotations from blowing up the step
   std::vector<Vector3> m_t1, m_t2;
-  Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>, Eigen::Lower, Eigen::MetisOrdering<int>> m_ldlt;
-  Eigen::SparseLU<Eigen::SparseMatrix<double>, Eigen::COLAMDOrdering<int>> m_lu;
+  Sparse_ldlt m_ldlt; // J (symmetric weights) or J^T J
+  Sparse_lu m_lu;
 };
 
 // Cautious global Newton steps until the convergence test holds; a batch of local Newton sweeps whenever no

@@ -32,15 +32,12 @@
 #include <CGAL/Spherical_parameterization/internal/Sphere_state.h>
 #include <CGAL/Spherical_parameterization/internal/Sphere_system.h>
 #include <CGAL/Spherical_parameterization/internal/Vector3.h>
-#include <CGAL/Spherical_parameterization/internal/deferred_stop_signals.h>
 #include <CGAL/Spherical_parameterization/internal/iteration_driver.h>
 #include <CGAL/Spherical_parameterization/internal/stage3/constrained_balance.h>
+#include <CGAL/Spherical_parameterization/internal/stage3/sparse_factorization.h>
 #include <CGAL/Spherical_parameterization/internal/stage3/tangent_newton_system.h>
 
 #include <Eigen/Sparse>
-#include <Eigen/SparseCholesky>
-#include <Eigen/SparseLU>
-#include <Eigen/MetisSupport>
 
 #include <algorithm>
 #include <array>
@@ -103,10 +100,7 @@ public:
   void linearize(const std::vector<Vector3>& x, double mu)
   {
     const std::size_t n = m_system.number_of_vertices;
-    m_t1.resize(n);
-    m_t2.resize(n);
-    for(std::size_t i = 0; i < n; ++i)
-      tangent_frame(x[i], m_t1[i], m_t2[i]);
+    tangent_frames(x, m_t1, m_t2);
     if(m_jacobian.rows() != Eigen::Index(2 * n))
       build_pattern();
     m_residual.resize(static_cast<Eigen::Index>(2 * n));
@@ -195,13 +189,7 @@ public:
       largest = std::max(largest, std::abs(shifted.coeff(k, k)));
     for(Eigen::Index k = 0; k < m; ++k)
       shifted.coeffRef(k, k) += 1e-10 * largest;
-    if(!m_lu_analyzed)
-    {
-      m_lu.analyzePattern(shifted);
-      m_lu_analyzed = true;
-    }
-    m_lu.factorize(shifted);
-    if(m_lu.info() != Eigen::Success)
+    if(!m_lu.factorize(shifted))
       return false;
     Eigen::VectorXd rotations[3], basis[3];
     for(int axis = 0; axis < 3; ++axis)
@@ -235,29 +223,22 @@ public:
       if(!orthonormalize(basis))
         return false;
       for(int k = 0; k < 3; ++k)
-        basis[k] = m_lu.transpose().solve(basis[k]);
+        basis[k] = m_lu.solver().transpose().solve(basis[k]);
     }
     if(!orthonormalize(basis) || !orthonormalize(rotations))
       return false;
     Eigen::VectorXd rhs = -m_residual;
     for(int k = 0; k < 3; ++k)
       rhs -= basis[k].dot(rhs) * basis[k];
-    Eigen::VectorXd delta = m_lu.solve(rhs);
+    Eigen::VectorXd delta = m_lu.solver().solve(rhs);
     for(int k = 0; k < 3; ++k)
       delta -= rotations[k].dot(delta) * rotations[k];
-    if(!delta.allFinite())
-      return false;
-    d.resize(n);
-    for(std::size_t i = 0; i < n; ++i)
-      d[i] = delta[Eigen::Index(2 * i)] * m_t1[i] + delta[Eigen::Index(2 * i + 1)] * m_t2[i];
-    m_slope = m_gradient.dot(delta);
-    return m_slope < 0.;
+    return to_tangent_vectors(delta, d) && m_slope < 0.;
   }
 
   // The Gauss-Newton step with the relative Marquardt shift `lambda` (after linearize()), as tangent vectors.
   bool step(const std::vector<Vector3>& x, double mu, double lambda, std::vector<Vector3>& d)
   {
-    const std::size_t n = m_system.number_of_vertices;
     Eigen::SparseMatrix<double> normal = Eigen::SparseMatrix<double>(m_jacobian.transpose()) * m_jacobian;
     if(mu > 0.)
     {
@@ -295,24 +276,9 @@ public:
     mean_diagonal /= double(std::max<Eigen::Index>(normal.rows(), 1));
     for(Eigen::Index k = 0; k < normal.rows(); ++k)
       normal.coeffRef(k, k) += lambda * normal.coeff(k, k) + 1e-12 * mean_diagonal;
-    if(!m_analyzed || normal.nonZeros() != m_analyzed_nonzeros)
-    {
-      const Deferred_stop_signals deferred; // METIS orders the unknowns (see deferred_stop_signals.h)
-      m_ldlt.analyzePattern(normal);
-      m_analyzed = true;
-      m_analyzed_nonzeros = normal.nonZeros();
-    }
-    m_ldlt.factorize(normal);
-    if(m_ldlt.info() != Eigen::Success)
+    if(!m_ldlt.factorize(normal))
       return false;
-    const Eigen::VectorXd delta = m_ldlt.solve(-m_gradient);
-    if(!delta.allFinite())
-      return false;
-    d.resize(n);
-    for(std::size_t i = 0; i < n; ++i)
-      d[i] = delta[Eigen::Index(2 * i)] * m_t1[i] + delta[Eigen::Index(2 * i + 1)] * m_t2[i];
-    m_slope = m_gradient.dot(delta);
-    return true;
+    return to_tangent_vectors(m_ldlt.solver().solve(-m_gradient), d);
   }
 
   // The directional derivative of Phi_mu along the last step.
@@ -325,6 +291,18 @@ public:
   const std::vector<Vector3>& frame2() const { return m_t2; }
 
 private:
+  // The step of tangent coordinates `delta` as tangent vectors, and its slope; false when it is not finite.
+  bool to_tangent_vectors(const Eigen::VectorXd& delta, std::vector<Vector3>& d)
+  {
+    if(!delta.allFinite())
+      return false;
+    d.resize(m_system.number_of_vertices);
+    for(std::size_t i = 0; i < d.size(); ++i)
+      d[i] = delta[Eigen::Index(2 * i)] * m_t1[i] + delta[Eigen::Index(2 * i + 1)] * m_t2[i];
+    m_slope = m_gradient.dot(delta);
+    return true;
+  }
+
   void build_pattern() { build_block_pattern(m_system, m_jacobian, m_diagonal_slots, m_block_slots); }
 
   const Sphere_system& m_system;
@@ -335,11 +313,8 @@ private:
   std::vector<std::array<std::size_t, 4>> m_diagonal_slots, m_block_slots;
   Eigen::VectorXd m_residual, m_gradient;
   double m_slope = 0.;
-  bool m_analyzed = false;
-  Eigen::Index m_analyzed_nonzeros = 0;
-  Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>, Eigen::Lower, Eigen::MetisOrdering<int>> m_ldlt;
-  bool m_lu_analyzed = false;
-  Eigen::SparseLU<Eigen::SparseMatrix<double>, Eigen::COLAMDOrdering<int>> m_lu;
+  Sparse_ldlt m_ldlt; // J^T J + B + lambda diag(J^T J), Marquardt's steps
+  Sparse_lu m_lu;     // J, the plain Gauss-Newton steps
 };
 
 struct Least_squares_report

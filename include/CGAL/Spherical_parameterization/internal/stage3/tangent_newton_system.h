@@ -24,6 +24,7 @@
 
 #include <CGAL/assertions.h>
 
+#include <Eigen/LU>
 #include <Eigen/OrderingMethods>
 #include <Eigen/SparseCholesky>
 #include <Eigen/SparseCore>
@@ -174,10 +175,7 @@ public:
     const std::size_t n = m_system.number_of_vertices;
     if(m_rank.empty())
       build_pattern();
-    m_t1.resize(n);
-    m_t2.resize(n);
-    for(std::size_t i = 0; i < n; ++i)
-      tangent_frame(x[i], m_t1[i], m_t2[i]);
+    tangent_frames(x, m_t1, m_t2);
     // Gauge: vertex 0 does not move, and vertex g, the closest to 90 degrees from it, does not turn around it.
     std::size_t g = 0;
     double smallest = 2.;
