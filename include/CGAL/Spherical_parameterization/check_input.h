@@ -14,7 +14,6 @@
 #include <CGAL/Spherical_parameterization/internal/Mesh_arrays.h>
 
 #include <CGAL/Named_function_parameters.h>
-#include <CGAL/Union_find.h>
 #include <CGAL/boost/graph/named_params_helper.h>
 
 #include <algorithm>
@@ -40,17 +39,48 @@ struct Input_check
 
 namespace internal {
 
-// CGAL::Union_find of the indices 0 .. n-1, with one handle per index.
-using Index_sets = CGAL::Union_find<std::size_t>;
-
-inline std::vector<Index_sets::handle> make_singletons(Index_sets& sets, std::size_t n)
+// Disjoint sets of the indices 0 .. n-1 in flat arrays (union by size, path halving): the checks below run one
+// for the ring of every vertex, where CGAL::Union_find allocated its nodes and handles for each ring.
+class Index_sets
 {
-  std::vector<Index_sets::handle> handles;
-  handles.reserve(n);
-  for(std::size_t i = 0; i < n; ++i)
-    handles.push_back(sets.make_set(i));
-  return handles;
-}
+public:
+  void reset(std::size_t n)
+  {
+    m_parent.resize(n);
+    std::iota(m_parent.begin(), m_parent.end(), 0);
+    m_size.assign(n, 1);
+    m_sets = n;
+  }
+
+  std::size_t find(std::size_t i)
+  {
+    while(m_parent[i] != i)
+    {
+      m_parent[i] = m_parent[m_parent[i]];
+      i = m_parent[i];
+    }
+    return i;
+  }
+
+  void unify_sets(std::size_t a, std::size_t b)
+  {
+    a = find(a);
+    b = find(b);
+    if(a == b)
+      return;
+    if(m_size[a] < m_size[b])
+      std::swap(a, b);
+    m_parent[b] = a;
+    m_size[a] += m_size[b];
+    --m_sets;
+  }
+
+  std::size_t number_of_sets() const { return m_sets; }
+
+private:
+  std::vector<std::size_t> m_parent, m_size;
+  std::size_t m_sets = 0;
+};
 
 inline Input_check make_check(Error_code code, const std::string& details = std::string())
 {
@@ -129,7 +159,7 @@ inline Input_check check_mesh_arrays(const Mesh_arrays& mesh)
 
   std::size_t number_of_edges = 0, border_edges = 0, non_manifold_edges = 0, misoriented_edges = 0;
   Index_sets border_loops;
-  const std::vector<Index_sets::handle> border_vertex = make_singletons(border_loops, nv);
+  border_loops.reset(nv);
   std::vector<char> on_border(nv, 0);
   for(std::size_t a = 0; a < nv; ++a)
   {
@@ -149,7 +179,7 @@ inline Input_check check_mesh_arrays(const Mesh_arrays& mesh)
       {
         ++border_edges;
         const std::size_t b = static_cast<std::size_t>(i->other);
-        border_loops.unify_sets(border_vertex[a], border_vertex[b]);
+        border_loops.unify_sets(a, b);
         on_border[a] = on_border[b] = 1;
       }
       else if(count > 2)
@@ -172,7 +202,7 @@ inline Input_check check_mesh_arrays(const Mesh_arrays& mesh)
   {
     std::size_t loops = 0;
     for(std::size_t v = 0; v < nv; ++v)
-      if(on_border[v] && border_loops.find(border_vertex[v]) == border_vertex[v])
+      if(on_border[v] && border_loops.find(v) == v)
         ++loops;
     return make_check(Error_code::HAS_BORDER, std::to_string(border_edges) + " boundary edges in "
                                                   + std::to_string(loops) + " boundary loop(s)");
@@ -210,15 +240,14 @@ inline Input_check check_mesh_arrays(const Mesh_arrays& mesh)
     }
     std::sort(local.begin(), local.end());
     local.erase(std::unique(local.begin(), local.end()), local.end());
-    ring.clear();
-    const std::vector<Index_sets::handle> neighbour = make_singletons(ring, local.size());
+    ring.reset(local.size());
     for(std::size_t k = offsets[v]; k < offsets[v + 1]; ++k)
     {
       const std::size_t a =
           static_cast<std::size_t>(std::lower_bound(local.begin(), local.end(), link[k].first) - local.begin());
       const std::size_t b =
           static_cast<std::size_t>(std::lower_bound(local.begin(), local.end(), link[k].second) - local.begin());
-      ring.unify_sets(neighbour[a], neighbour[b]);
+      ring.unify_sets(a, b);
     }
     if(ring.number_of_sets() != 1)
       ++pinched;
@@ -233,10 +262,10 @@ inline Input_check check_mesh_arrays(const Mesh_arrays& mesh)
                           + " edges are traversed in the same direction by their two faces");
 
   Index_sets components;
-  const std::vector<Index_sets::handle> vertex = make_singletons(components, nv);
+  components.reset(nv);
   for(const auto& p : mesh.polygons)
     for(int k = 0; k < 3; ++k)
-      components.unify_sets(vertex[static_cast<std::size_t>(p[k])], vertex[static_cast<std::size_t>(p[(k + 1) % 3])]);
+      components.unify_sets(static_cast<std::size_t>(p[k]), static_cast<std::size_t>(p[(k + 1) % 3]));
   const std::size_t number_of_components = components.number_of_sets();
   if(number_of_components > 1)
     return make_check(Error_code::MULTIPLE_COMPONENTS, std::to_string(number_of_components) + " connected components");
