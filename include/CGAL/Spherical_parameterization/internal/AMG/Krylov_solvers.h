@@ -52,24 +52,6 @@ inline double dot(const double* x, const double* y, Index n)
   return sum;
 }
 
-// The same sum as dot() in four independent partial sums (entries i mod 4), added in a fixed order: one sum waits
-// on the latency of every addition. Its rounding differs from dot()'s; MINRES (Newton's steps) uses it.
-inline double dot_four_sums(const double* x, const double* y, Index n)
-{
-  double s0 = 0., s1 = 0., s2 = 0., s3 = 0.;
-  Index i = 0;
-  for(; i + 4 <= n; i += 4)
-  {
-    s0 += x[i] * y[i];
-    s1 += x[i + 1] * y[i + 1];
-    s2 += x[i + 2] * y[i + 2];
-    s3 += x[i + 3] * y[i + 3];
-  }
-  for(; i < n; ++i)
-    s0 += x[i] * y[i];
-  return (s0 + s1) + (s2 + s3);
-}
-
 inline double norm(const double* x, Index n)
 {
   return std::sqrt(dot(x, x, n));
@@ -341,7 +323,7 @@ Krylov_result minres(Operator& apply_operator, Preconditioner& apply_preconditio
   std::copy(b, b + n, r1);
   std::copy(b, b + n, r2);
   apply_preconditioner(r1, y);
-  double beta1 = dot_four_sums(r1, y, n);
+  double beta1 = dot(r1, y, n);
   if(!(beta1 >= 0.) || !std::isfinite(beta1))
     return result;
   beta1 = std::sqrt(beta1);
@@ -364,7 +346,7 @@ Krylov_result minres(Operator& apply_operator, Preconditioner& apply_preconditio
       for(Index i = 0; i < n; ++i)
         y[i] -= c * r1[i];
     }
-    const double alpha = dot_four_sums(v, y, n);
+    const double alpha = dot(v, y, n);
     const double c = alpha / beta;
     for(Index i = 0; i < n; ++i)
       y[i] -= c * r2[i];
@@ -372,7 +354,7 @@ Krylov_result minres(Operator& apply_operator, Preconditioner& apply_preconditio
     std::copy(y, y + n, r2);
     apply_preconditioner(r2, y);
     old_beta = beta;
-    beta = dot_four_sums(r2, y, n);
+    beta = dot(r2, y, n);
     if(!(beta >= 0.) || !std::isfinite(beta))
       return result;
     beta = std::sqrt(beta);

@@ -109,17 +109,11 @@ private:
   void multiply(const double* in, double* out)
   {
     const std::size_t n = m_system.number_of_vertices;
-    double c[3];
-    rotation_coefficients(in, c);
-    m_projected.resize(2 * n);
+    m_projected.assign(in, in + 2 * n);
+    project_out_rotations(m_projected.data());
     m_ambient.resize(n);
     for(std::size_t i = 0; i < n; ++i)
-    {
-      const double u = project_entry(in, c, 2 * i), v = project_entry(in, c, 2 * i + 1);
-      m_projected[2 * i] = u;
-      m_projected[2 * i + 1] = v;
-      m_ambient[i] = u * m_t1[i] + v * m_t2[i];
-    }
+      m_ambient[i] = m_projected[2 * i] * m_t1[i] + m_projected[2 * i + 1] * m_t2[i];
     for(std::size_t i = 0; i < n; ++i)
     {
       Vector3 pull;
@@ -136,13 +130,13 @@ private:
   void precondition(const double* in, double* out)
   {
     const std::size_t n = m_system.number_of_vertices;
-    double c[3];
-    rotation_coefficients(in, c);
+    m_projected.assign(in, in + 2 * n);
+    project_out_rotations(m_projected.data());
     m_coordinates_in.resize(3 * n);
     m_coordinates_out.resize(3 * n);
     for(std::size_t i = 0; i < n; ++i)
     {
-      const Vector3 v = project_entry(in, c, 2 * i) * m_t1[i] + project_entry(in, c, 2 * i + 1) * m_t2[i];
+      const Vector3 v = m_projected[2 * i] * m_t1[i] + m_projected[2 * i + 1] * m_t2[i];
       m_coordinates_in[3 * i] = v.x;
       m_coordinates_in[3 * i + 1] = v.y;
       m_coordinates_in[3 * i + 2] = v.z;
@@ -218,39 +212,15 @@ private:
     }
   }
 
-  // The coefficients of v along the three orthonormal rotation fields, in one pass: three independent sums, where
-  // three passes of one sum each wait on the latency of every addition (a projection is applied four times per
-  // MINRES iteration).
-  void rotation_coefficients(const double* v, double c[3]) const
-  {
-    const std::size_t size = 2 * m_system.number_of_vertices;
-    const double* q0 = m_rotations[0].data();
-    const double* q1 = m_rotations[1].data();
-    const double* q2 = m_rotations[2].data();
-    double c0 = 0., c1 = 0., c2 = 0.;
-    for(std::size_t r = 0; r < size; ++r)
-    {
-      c0 += v[r] * q0[r];
-      c1 += v[r] * q1[r];
-      c2 += v[r] * q2[r];
-    }
-    c[0] = c0;
-    c[1] = c1;
-    c[2] = c2;
-  }
-
-  double project_entry(const double* v, const double c[3], std::size_t r) const
-  {
-    return v[r] - (c[0] * m_rotations[0][r] + c[1] * m_rotations[1][r] + c[2] * m_rotations[2][r]);
-  }
-
   void project_out_rotations(double* v) const
   {
-    double c[3];
-    rotation_coefficients(v, c);
-    const std::size_t size = 2 * m_system.number_of_vertices;
-    for(std::size_t r = 0; r < size; ++r)
-      v[r] = project_entry(v, c, r);
+    const AMG::Index size = static_cast<AMG::Index>(2 * m_system.number_of_vertices);
+    for(const std::vector<double>& q : m_rotations)
+    {
+      const double c = AMG::dot(v, q.data(), size);
+      for(AMG::Index r = 0; r < size; ++r)
+        v[r] -= c * q[static_cast<std::size_t>(r)];
+    }
   }
 
   const Sphere_system& m_system;
