@@ -227,7 +227,7 @@ private:
     iterations_clock.start();
     Iteration_options smoothing = level_options;
     smoothing.max_gauss_seidel_sweeps = m_options.iterations.tuning.multilevel_smoothing_sweeps;
-    const Iteration_report smoothed = projected_gauss_seidel(state, smoothing, iterations_clock);
+    const Iteration_report smoothed = projected_gauss_seidel(state, smoothing, iterations_clock, false);
     m_result.gauss_seidel.iterations = smoothed.sweeps;
     m_result.gauss_seidel.residual = smoothed.residual;
     m_result.gauss_seidel.seconds = iterations_clock.time();

@@ -131,6 +131,8 @@ public:
       m_measure = measure_map(m_state.system(), m_state.positions(), m_options.tolerance);
       m_measured = true;
       m_measured_revision = m_state.revision();
+      if(m_has_given_residual && m_given_residual_revision == m_measured_revision)
+        m_measure.residual = m_given_residual; // end_iteration(residual) was told it for these positions
     }
     return m_measure;
   }
@@ -179,6 +181,20 @@ public:
   bool end_iteration(double residual = -1.)
   {
     ++m_report.sweeps;
+    // The map is measured only for what needs more than Res (the best iterate, stagnation): on the multilevel
+    // smoothing sweeps nothing does.
+    if(!m_keep_best && m_stagnation_window == 0 && residual >= 0.)
+    {
+      m_has_given_residual = true;
+      m_given_residual = residual;
+      m_given_residual_revision = m_state.revision();
+      if(m_options.progress && !m_options.progress(m_stage, m_report.sweeps, residual, m_state.invalid_faces()))
+      {
+        m_report.cancelled = true;
+        return false;
+      }
+      return true;
+    }
     const Map_measure& now = residual >= 0. ? measure(residual) : measure();
     if(m_keep_best)
     {
@@ -237,6 +253,10 @@ private:
   Map_measure m_measure;
   bool m_measured = false;
   std::size_t m_measured_revision = 0;
+  // Res as given to end_iteration() without a measure, for the positions of that revision.
+  bool m_has_given_residual = false;
+  double m_given_residual = 0.;
+  std::size_t m_given_residual_revision = 0;
   std::size_t m_stagnation_window = 0;
   std::vector<double> m_history;
   bool m_keep_best = false;

@@ -30,8 +30,10 @@ namespace internal {
 
 // Paper, Section 3.2, with lambda = 1: x_i <- s_i / |s_i| in turn, while Res decreases. The last iterate whose
 // residual did not grow is kept.
+// `test_each_sweep`: the convergence test after every sweep (the paper's stage 2); without it, only after the last
+// one (the multilevel smoothing: a few sweeps from a map carried back, which does not pass the test).
 inline Iteration_report projected_gauss_seidel(Sphere_state& state, const Iteration_options& options,
-                                               const CGAL::Real_timer& clock)
+                                               const CGAL::Real_timer& clock, bool test_each_sweep = true)
 {
   Iteration_driver driver(state, options, clock, "gauss-seidel", options.max_gauss_seidel_sweeps);
   const Sphere_system& system = state.system();
@@ -63,7 +65,7 @@ inline Iteration_report projected_gauss_seidel(Sphere_state& state, const Iterat
       break;
     }
     residual = next;
-    if(driver.converged())
+    if(test_each_sweep && driver.converged())
       break;
     if(!go_on)
       break;

@@ -74,6 +74,35 @@ enum class Step_merit
   IMBALANCE
 };
 
+// How far the map is from the convergence test, in units of what the test allows: <= 1 passes (the worst imbalance
+// over its allowance, or Res over the tolerance).
+inline double distance_to_convergence(const Map_measure& measure, const Iteration_options& options)
+{
+  const double value = convergence_measure(measure, options);
+  return options.convergence_test == Convergence_test::PAPER_RESIDUAL ? value / options.tolerance : value;
+}
+
+// The forcing of the next step: Eisenstat and Walker's `forcing`, made tight enough for the test to pass after the
+// step when Newton's quadratic convergence says it can be the last one. With d_k the distance to the test after step
+// k (distance_to_convergence), d_{k+1} ~ K d_k^2 and K ~ d_k / d_{k-1}^2 predict d_{k+1} ~ d_k^3 / d_{k-1}^2; when that
+// is <= 1, the linear residual is reduced to Solver_tuning::newton_last_step_forcing / d_k, so that the inexact
+// solve does not leave the map just above the test (bunny00 and armadillo Loop x2 ended steps at 1.6 and 1.7 times
+// the tolerance with the forcing at 1e-3, each costing one more Newton step). `previous`: d_{k-1}, updated to d_k.
+inline double last_step_forcing(double forcing, double& previous, Iteration_driver& driver,
+                                const Iteration_options& options)
+{
+  const double distance = distance_to_convergence(driver.measure(), options);
+  const double last = previous;
+  previous = distance;
+  if(!(distance > 1.) || !(last > 0.) || !std::isfinite(distance) || !std::isfinite(last))
+    return forcing;
+  const double predicted = distance * (distance / last) * (distance / last);
+  if(!(predicted <= 1.))
+    return forcing;
+  return std::max(options.tuning.newton_min_forcing,
+                  std::min(forcing, options.tuning.newton_last_step_forcing / distance));
+}
+
 inline Iteration_report mobius_newton(Sphere_state& state, const Iteration_options& options,
                                       const CGAL::Real_timer& clock, Mobius_newton_statistics* statistics = nullptr,
                                       std::size_t patience = 3, bool allow_folds = false,
@@ -107,6 +136,7 @@ inline Iteration_report mobius_newton(Sphere_state& state, const Iteration_optio
     return step_merit == Step_merit::IMBALANCE ? measure.imbalance.rms : measure.residual;
   };
   double residual = driver.measure().residual;
+  double distance_to_test = distance_to_convergence(driver.measure(), options);
   const std::vector<Vector3> start = x;
   driver.keep_best_iterate();
   std::size_t short_steps = 0;
@@ -183,6 +213,7 @@ inline Iteration_report mobius_newton(Sphere_state& state, const Iteration_optio
       }
       const double ratio = previous_residual > 0. ? residual / previous_residual : 1.;
       forcing = std::min(tuning.newton_max_forcing, std::max(tuning.newton_min_forcing, 0.9 * ratio * ratio));
+      forcing = last_step_forcing(forcing, distance_to_test, driver, options);
     }
     if(accepted_t == 0. && allow_folds)
     {
