@@ -664,6 +664,26 @@ TEST(Imbalance, RadialEdgesDoNotHideACollapse)
     if(size > 1e-10)
       EXPECT_GT(collapsed.max, 1e-2);
   }
+  // CGAL's tetrahedron.off with cotangent weights, as the library returned it with status OK before the floors were
+  // taken over chords: three vertices within 1e-14 of each other, the fourth opposite, floors of 0.27 to 0.5 over
+  // the tangential lengths (every vertex passed on its floor), max imbalance 0.09.
+  {
+    Arrays cgal_tetrahedron;
+    cgal_tetrahedron.points = {Point(0, 0, 0), Point(1, 0, 0), Point(0, 1, 0), Point(0, 0, 1)};
+    cgal_tetrahedron.faces = {{0, 1, 2}, {0, 3, 1}, {0, 2, 3}, {1, 3, 2}};
+    const SPI::Mesh_arrays cgal_arrays = arrays_of(to_mesh(cgal_tetrahedron));
+    SPI::Sphere_system cgal_system = SPI::make_connectivity(cgal_arrays);
+    ASSERT_EQ(SPI::assign_weights(cgal_system, cgal_arrays, SP::Weighting::COTANGENT, {}, message), SP::Error_code::OK)
+        << message;
+    const std::vector<SPI::Vector3> written = {
+        SPI::Vector3(0.855361604252452, 1.1370517915877929e-07, -0.51803139477319227),
+        SPI::Vector3(-0.85536160425245689, -1.1370517915872002e-07, 0.51803139477318405),
+        SPI::Vector3(-0.85536160425244867, -1.1370517642159993e-07, 0.51803139477319771),
+        SPI::Vector3(-0.85536160425245045, -1.1370518189601795e-07, 0.51803139477319493)};
+    const SPI::Imbalance_summary collapsed = SPI::summarize_imbalance(cgal_system, written, 1e-6);
+    EXPECT_FALSE(collapsed.balanced());
+    EXPECT_GE(collapsed.unbalanced_vertices, 1u);
+  }
   // The regular tetrahedron, projected, is balanced.
   std::vector<SPI::Vector3> regular = arrays.points;
   for(SPI::Vector3& p : regular)

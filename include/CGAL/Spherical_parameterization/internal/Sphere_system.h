@@ -361,8 +361,11 @@ inline Residuals compute_residuals(const Sphere_system& system, const std::vecto
 //
 // Positions rounded to double carry an imbalance of their own: moving x_i and its neighbours by half an ulp
 // (|dx| <= sqrt(3) 2^-53 each) changes d_i by up to 2 sqrt(3) 2^-53 sum_j |w_ij|. `rounding_floor` is
-// imbalance_rounding_factor times that, over l_i: below it no solver can balance the vertex in double precision,
-// so a vertex passes when e_i <= max(tolerance, rounding_floor_i). It exceeds 1e-6 only for neighbourhoods below
+// imbalance_rounding_factor times that, over sum_j |w_ij| |x_j - x_i| (chords: at most l_i / 0.7 on a mesh's
+// edges, which stay below 90 degrees): below it no solver can balance the vertex in double precision, so a vertex
+// passes when e_i <= max(tolerance, rounding_floor_i). Over l_i itself, a neighbour near the antipode (an edge of
+// nearly 180 degrees, which no balanced map of a mesh has) made the floor of a collapse 0.27 to 0.5: CGAL's
+// tetrahedra with cotangent weights passed, three vertices within 1e-14 of each other and the fourth opposite. It exceeds 1e-6 only for neighbourhoods below
 // about 2e-9 (the thin limbs of organic models); such vertices are counted and reported. A vertex whose floor
 // exceeds max_rounding_floor never passes: every e_i is at most 1 (up to rounding), so that test could not fail,
 // and it passed maps collapsed within rounding onto two points (found by the fuzzer: floors of 1 and more). The
@@ -415,7 +418,8 @@ inline Vertex_imbalance vertex_imbalance(const Sphere_system& system, const std:
   if(scale > 0.)
   {
     result.imbalance = tangential / scale;
-    result.rounding_floor = imbalance_rounding_factor * 2. * std::sqrt(3.) * half_ulp * weight_magnitude / scale;
+    result.rounding_floor =
+        imbalance_rounding_factor * 2. * std::sqrt(3.) * half_ulp * weight_magnitude / chordal_scale;
   }
   else
   {
