@@ -197,30 +197,42 @@ inline Input_check check_mesh_arrays(const Mesh_arrays& mesh)
       for(int k = 0; k < 3; ++k)
         link[fill[static_cast<std::size_t>(p[k])]++] = {p[(k + 1) % 3], p[(k + 2) % 3]};
   }
+  // The link of v is one cycle when a walk along it, from one link edge to the next through their shared end,
+  // comes back only after visiting every link edge. Every neighbour is an end of exactly two link edges here (each
+  // edge of the mesh has two faces, checked above), so the ends sorted by vertex come in pairs, and the link edge
+  // beyond an end is the one at its partner's position.
   std::size_t pinched = 0;
-  std::vector<int> local;
-  Index_sets ring;
+  std::vector<std::pair<int, std::size_t>> ends; // (neighbour, 2 * link edge + which end), sorted
+  std::vector<std::size_t> position_of_end;      // where each end of each link edge landed in `ends`
   for(std::size_t v = 0; v < nv; ++v)
   {
-    local.clear();
-    for(std::size_t k = offsets[v]; k < offsets[v + 1]; ++k)
+    const std::size_t degree = offsets[v + 1] - offsets[v];
+    ends.clear();
+    for(std::size_t k = 0; k < degree; ++k)
     {
-      local.push_back(link[k].first);
-      local.push_back(link[k].second);
+      ends.emplace_back(link[offsets[v] + k].first, 2 * k);
+      ends.emplace_back(link[offsets[v] + k].second, 2 * k + 1);
     }
-    std::sort(local.begin(), local.end());
-    local.erase(std::unique(local.begin(), local.end()), local.end());
-    ring.clear();
-    const std::vector<Index_sets::handle> neighbour = make_singletons(ring, local.size());
-    for(std::size_t k = offsets[v]; k < offsets[v + 1]; ++k)
+    std::sort(ends.begin(), ends.end());
+    position_of_end.resize(2 * degree);
+    bool paired = true;
+    for(std::size_t p = 0; p < ends.size(); ++p)
     {
-      const std::size_t a =
-          static_cast<std::size_t>(std::lower_bound(local.begin(), local.end(), link[k].first) - local.begin());
-      const std::size_t b =
-          static_cast<std::size_t>(std::lower_bound(local.begin(), local.end(), link[k].second) - local.begin());
-      ring.unify_sets(neighbour[a], neighbour[b]);
+      position_of_end[ends[p].second] = p;
+      paired = paired && ends[p].first == ends[p ^ 1].first;
     }
-    if(ring.number_of_sets() != 1)
+    std::size_t visited = 0;
+    if(paired)
+    {
+      std::size_t end = 1; // leave link edge 0 through its second end
+      do
+      {
+        ++visited;
+        const std::size_t entered = ends[position_of_end[end] ^ 1].second; // the same vertex on the next link edge
+        end = entered ^ 1;                                                 // leave that edge through its other end
+      } while(end / 2 != 0 && visited <= degree);
+    }
+    if(visited != degree)
       ++pinched;
   }
   if(pinched > 0)
