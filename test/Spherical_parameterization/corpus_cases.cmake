@@ -68,6 +68,32 @@ foreach(weights uniform mean_value cotangent uniform_morton_order)
   endforeach()
 endforeach()
 
+# Marching-tetrahedra surfaces of a ball with many thin arms (make_thin_arms_surface.py SEED ARMS RESOLUTION), made
+# once at configure time in the build folder, uniform weights: meshes of a kind none of the files above is, whose
+# balanced maps squeeze the arms' tips below double precision.
+set(SP_THIN_ARMS 1_12_70 3_12_70 4_12_70 11_16_80 16_16_80 14_20_90 17_20_90 18_24_100)
+set(SP_THIN_ARMS_DIR ${CMAKE_CURRENT_BINARY_DIR}/thin_arms)
+file(MAKE_DIRECTORY ${SP_THIN_ARMS_DIR})
+set_property(DIRECTORY APPEND PROPERTY CMAKE_CONFIGURE_DEPENDS ${CMAKE_CURRENT_SOURCE_DIR}/make_thin_arms_surface.py)
+foreach(arms ${SP_THIN_ARMS})
+  set(mesh ${SP_THIN_ARMS_DIR}/thin_arms_${arms}.off)
+  if(NOT EXISTS ${mesh} OR ${CMAKE_CURRENT_SOURCE_DIR}/make_thin_arms_surface.py IS_NEWER_THAN ${mesh})
+    string(REPLACE "_" ";" arguments ${arms})
+    execute_process(COMMAND /usr/bin/python3 ${CMAKE_CURRENT_SOURCE_DIR}/make_thin_arms_surface.py ${arguments}
+                            ${mesh} RESULT_VARIABLE made)
+    if(NOT made EQUAL 0)
+      file(REMOVE ${mesh})
+    endif()
+  endif()
+  if(EXISTS ${mesh})
+    sp_add_corpus_case(${mesh} uniform)
+  else()
+    # A mesh that could not be made (no NumPy) fails the run rather than shrinking it.
+    message(WARNING "could not make ${mesh} (needs /usr/bin/python3 with NumPy: scripts/setup.sh)")
+    add_test(NAME corpus.uniform.thin_arms_${arms}_made COMMAND ${CMAKE_COMMAND} -E false)
+  endif()
+endforeach()
+
 # Files that must be refused: one ctest case each, with the exact code of bad_input_cases.txt.
 file(GLOB SP_BAD_INPUT RELATIVE "${SPHERICAL_PARAMETERIZATION_SHARED_MESHES}/bad_input"
      "${SPHERICAL_PARAMETERIZATION_SHARED_MESHES}/bad_input/*")

@@ -206,7 +206,7 @@ check "--json on an invalid mesh" 2 $?
 python3 - "$scratch/good.json" "$scratch/bad.json" "$scratch/json.off" <<'JSON_CHECK' || failures=$((failures + 1))
 import json, math, os, sys
 keys = {"format", "input", "output", "status", "success", "skipped", "message", "vertices", "faces", "weights", "criterion", "tolerance",
-        "max_imbalance", "imbalance_percentile_99", "unbalanced_vertices", "vertices_at_rounding_floor",
+        "max_imbalance", "imbalance_percentile_99", "unbalanced_vertices", "vertices_at_rounding_floor", "vertices_below_precision",
         "max_stationarity", "unstationary_vertices", "residual", "max_tangential_residual", "flipped_faces", "total_signed_area", "bijective",
         "initial_flipped_faces", "uniform_initial_guess_fallback", "admissible_weights", "raised_weights", "clamped_weights",
         "rejected_moves", "separator_size",

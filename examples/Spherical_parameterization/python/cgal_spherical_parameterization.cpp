@@ -125,6 +125,7 @@ py::dict result_dict(const SP::Result& r, const std::string& weights, const std:
   d["max_stationarity"] = number(r.max_stationarity);
   d["unstationary_vertices"] = r.unstationary_vertices;
   d["vertices_at_rounding_floor"] = r.vertices_at_rounding_floor;
+  d["vertices_below_precision"] = r.vertices_below_precision;
   d["residual"] = number(r.residual);
   d["max_tangential_residual"] = number(r.max_tangential_residual);
   d["flipped_faces"] = r.flipped_faces;

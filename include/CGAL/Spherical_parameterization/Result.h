@@ -62,16 +62,23 @@ struct Result
   /// The largest imbalance \f$ e_i = |t_i| / \sum_j |w_{ij}| s(|x_j - x_i|) \f$ over the vertices (see
   /// `Convergence_test::IMBALANCE`): how far a vertex is from the balance point of its neighbours, in units of its
   /// own neighbourhood. The default convergence test is `max_imbalance <= tolerance`, except at vertices whose
-  /// rounding floor is larger.
+  /// rounding floor is larger, over the vertices tested (see `vertices_below_precision`).
   double max_imbalance = -1.;
   double imbalance_percentile_99 = -1.; ///< The 99th percentile of the imbalances \f$ e_i \f$.
   /// Vertices whose neighbourhood is so small (spherical edges below about 2e-9) that positions rounded to double
   /// carry an imbalance above the tolerance: \f$ 8 \cdot 2 \sqrt{3} \, 2^{-53} \sum_j |w_{ij}| / \sum_j |w_{ij}| s(|x_j - x_i|) \f$,
   /// their rounding floor. The imbalance test holds them to that floor instead of the tolerance; a floor above
-  /// 1/2 (a test that could not fail) never passes.
+  /// 1/2 (a test that could not fail) never passes, unless the vertex is below double precision
+  /// (`vertices_below_precision`).
   std::size_t vertices_at_rounding_floor = 0;
+  /// Vertices below double precision: all their neighbours within about 28 ulps of them (a weighted mean chord below
+  /// \f$ 8 \cdot 2 \sqrt{3} \, 2^{-53} / (1/2) \approx 6.2 \cdot 10^{-15} \f$), where the balanced map shrinks the tips of
+  /// long thin arms below 1e-16 and positions coincide as doubles. Their balance cannot be told from rounding: they
+  /// are counted here and not tested (nor in `max_imbalance`); every vertex around them is. The certificate covers
+  /// them like every other vertex.
+  std::size_t vertices_below_precision = 0;
   /// Vertices whose imbalance exceeds the tolerance (or their rounding floor, where it is larger), or whose floor
-  /// exceeds 1/2; 0 when balanced.
+  /// exceeds 1/2 (vertices below double precision excepted); 0 when balanced.
   std::size_t unbalanced_vertices = 0;
   /// Non-symmetric weights (mean value) only, whose balance equations generally have no exact solution: the largest
   /// stationarity \f$ \sigma_k \f$ of their least-squares problem \f$ \min \frac{1}{2} \sum_i e_i^2 \f$ (the imbalances

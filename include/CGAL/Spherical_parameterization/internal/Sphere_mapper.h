@@ -450,6 +450,7 @@ private:
     m_result.max_imbalance = imbalance.max;
     m_result.imbalance_percentile_99 = imbalance.percentile_99;
     m_result.vertices_at_rounding_floor = imbalance.vertices_at_rounding_floor;
+    m_result.vertices_below_precision = imbalance.vertices_below_precision;
     m_result.unbalanced_vertices = imbalance.unbalanced_vertices;
     m_result.convergence_test = m_iteration_options.convergence_test;
     Imbalance_summary stationarity;

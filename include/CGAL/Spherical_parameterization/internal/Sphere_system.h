@@ -372,6 +372,14 @@ inline Residuals compute_residuals(const Sphere_system& system, const std::vecto
 // thin limbs of CGAL's man.off and of oded_scorpion have floors up to a few 1e-2 and stay testable.
 constexpr double imbalance_rounding_factor = 8.;
 constexpr double max_rounding_floor = 0.5;
+// A vertex whose neighbours are all within this mean chord of it (about 28 ulps of 1: its floor with weights of one
+// sign is then above max_rounding_floor) is below double precision: its balance cannot be told from rounding, so it
+// is counted (Result::vertices_below_precision), not tested. The thin arms of marching-cubes surfaces (length over
+// radius above about 35) have balanced maps whose tips shrink below 1e-16, where positions coincide as doubles; the
+// arms' resolved vertices, including those around every such tip, are still tested. Where the floor exceeds 1/2
+// because weights of mixed signs cancel (sum_j |w_ij| >> 1), the vertex is resolved and never passes, as above.
+constexpr double below_precision_mean_chord =
+    imbalance_rounding_factor * 2. * 1.7320508075688772 * 1.1102230246251565e-16 / max_rounding_floor;
 
 // s = |x_i x e|, the length of the tangential part at the unit vector x_i of the edge e = x_j - x_i: c sqrt(1 - c^2/4)
 // for the chord c = |e|, written as a cross product because 1 - c^2/4 cancels near antipodal neighbours (rounding
@@ -396,6 +404,8 @@ struct Vertex_imbalance
   // e_i only next to nearly antipodal neighbours, and changing the merit changes the Newton paths on hard meshes
   // (CGAL's handle.off took a different path with e_i as the merit and did not converge).
   double chordal_imbalance = 0.;
+  // Every neighbour within below_precision_mean_chord of x_i (weighted mean): not tested.
+  bool below_precision = false;
 };
 
 inline Vertex_imbalance vertex_imbalance(const Sphere_system& system, const std::vector<Vector3>& x, std::size_t i)
@@ -427,6 +437,7 @@ inline Vertex_imbalance vertex_imbalance(const Sphere_system& system, const std:
     result.imbalance = tangential > 0. ? HUGE_VAL : 0.;
     result.rounding_floor = HUGE_VAL;
   }
+  result.below_precision = chordal_scale <= below_precision_mean_chord * weight_magnitude;
   result.chordal_imbalance = chordal_scale > 0. ? tangential / chordal_scale : result.imbalance;
   if(!(result.imbalance == result.imbalance))
     result.imbalance = HUGE_VAL; // NaN positions are never balanced
@@ -461,6 +472,7 @@ struct Imbalance_summary
   std::size_t unbalanced_vertices =
       0; // e_i > max(tolerance, rounding_floor_i), or rounding_floor_i > max_rounding_floor
   std::size_t vertices_at_rounding_floor = 0; // rounding_floor_i > tolerance: tested against their floor
+  std::size_t vertices_below_precision = 0;   // Vertex_imbalance::below_precision: counted, not tested
   bool balanced() const { return unbalanced_vertices == 0; }
 };
 
@@ -469,11 +481,17 @@ class Imbalance_accumulator
 {
 public:
   explicit Imbalance_accumulator(double tolerance) : m_tolerance(tolerance) {}
-  // `merit`: what the root mean square adds up (by default the value itself).
-  void add(double value, double rounding_floor, double merit = -1.)
+  // `merit`: what the root mean square adds up (by default the value itself). A vertex `below_precision` adds to the
+  // root mean square only.
+  void add(double value, double rounding_floor, double merit = -1., bool below_precision = false)
   {
     ++m_count;
     m_sum_of_squares += merit >= 0. ? merit * merit : value * value;
+    if(below_precision)
+    {
+      ++m_summary.vertices_below_precision;
+      return;
+    }
     const double allowed = std::max(m_tolerance, rounding_floor);
     const bool measurable = rounding_floor <= max_rounding_floor;
     m_summary.max = std::max(m_summary.max, value);
@@ -496,29 +514,34 @@ private:
   std::size_t m_count = 0;
 };
 
-// The imbalance of every vertex against `tolerance`. `values` (optional) receives e_i; the percentile is computed
-// only then, so that the stopping tests of the iterations allocate nothing.
+// The imbalance of every vertex against `tolerance`. `values` (optional) receives e_i; the percentile (of the tested
+// vertices, as the maximum) is computed only then, so that the stopping tests of the iterations allocate nothing.
 inline Imbalance_summary summarize_imbalance(const Sphere_system& system, const std::vector<Vector3>& x,
                                              double tolerance, std::vector<double>* values = nullptr)
 {
   const std::size_t n = system.number_of_vertices;
   if(values != nullptr)
     values->resize(n);
+  std::vector<double> tested;
   Imbalance_accumulator accumulator(tolerance);
   for(std::size_t i = 0; i < n; ++i)
   {
     const Vertex_imbalance v = vertex_imbalance(system, x, i);
     if(values != nullptr)
+    {
       (*values)[i] = v.imbalance;
-    accumulator.add(v.imbalance, v.rounding_floor, v.chordal_imbalance);
+      if(!v.below_precision)
+        tested.push_back(v.imbalance);
+    }
+    accumulator.add(v.imbalance, v.rounding_floor, v.chordal_imbalance, v.below_precision);
   }
   Imbalance_summary summary = accumulator.summary();
-  if(n > 0 && values != nullptr)
+  const std::size_t m = tested.size();
+  if(m > 0)
   {
-    std::vector<double> sorted(*values);
-    const std::size_t rank = std::min(n - 1, static_cast<std::size_t>(std::ceil(0.99 * static_cast<double>(n))) - 1);
-    std::nth_element(sorted.begin(), sorted.begin() + static_cast<std::ptrdiff_t>(rank), sorted.end());
-    summary.percentile_99 = sorted[rank];
+    const std::size_t rank = std::min(m - 1, static_cast<std::size_t>(std::ceil(0.99 * static_cast<double>(m))) - 1);
+    std::nth_element(tested.begin(), tested.begin() + static_cast<std::ptrdiff_t>(rank), tested.end());
+    summary.percentile_99 = tested[rank];
   }
   return summary;
 }
@@ -673,7 +696,7 @@ inline Map_measure measure_map(const Sphere_system& system, const std::vector<Ve
   {
     const Vertex_imbalance v = vertex_imbalance(system, x, i);
     squared_residuals += v.squared_residual;
-    accumulator.add(v.imbalance, v.rounding_floor, v.chordal_imbalance);
+    accumulator.add(v.imbalance, v.rounding_floor, v.chordal_imbalance, v.below_precision);
   }
   measure.imbalance = accumulator.summary();
   measure.residual = std::sqrt(squared_residuals) / static_cast<double>(std::max<std::size_t>(n, 1));
