@@ -16,7 +16,9 @@
 // least-squares problem the collapse onto a point solves (every F_i -> 0), Psi is scale-free: a collapse keeps the
 // imbalances near 0.5, so the iterations are not drawn along the boosts towards it.
 // Steps, in tangent coordinates, each cut back until Phi decreases (Armijo) and every triangle stays positive:
-// - plain Gauss-Newton steps d = -J^+ r from one sparse LU of J (gauss_newton_step());
+// - plain Gauss-Newton steps d = -J^+ r (rotations left out), from one sparse LU of J (gauss_newton_step()) or, from
+//   Solver_tuning::least_squares_krylov_vertices on, by GMRES with the weights' multigrid
+//   (krylov_gauss_newton_step(), with the LU as its fallback);
 // - Marquardt's steps (J^T J + B + lambda diag(J^T J)) d = -grad Phi where those crawl or do not descend (step());
 // - where the triangles stop the steps, the minimum subject to det(x_a, x_b, x_c) > 0 through
 //   Phi_mu(x) = Psi(x) - mu sum_f c_f log det_f, with B = mu sum_f c_f b_f b_f^T / det_f^2 the barrier's positive
@@ -438,6 +440,9 @@ public:
         m_out.noalias() = m_jacobian * m_delta;
         m_out += m_residual;
         m_in.noalias() = m_jacobian.transpose() * m_out;
+        // Its rotation part, (J N)^T (J d + r), is not the step's to remove (J N = 0 only where r = 0), and the
+        // gradient J^T r has none (Psi is invariant under rotations).
+        m_rotations.project_out(m_in.data());
         const double model_gradient = gradient_norm(m_in);
         if(!std::isfinite(model_gradient))
           return false;
