@@ -1190,6 +1190,46 @@ TEST(ImbalanceLeastSquares, JacobianAndGradientMatchFiniteDifferences)
   }
 }
 
+// The GMRES step of the least-squares iterations (krylov_gauss_newton_step(), large meshes) is the least-squares step
+// over the maps modulo rotations, found without a factorization: orthogonal to the rotations, a descent direction,
+// and the linear model's gradient P_N J^T (J d + r) small against the gradient J^T r (mean-value weights, whose
+// left null space is not the rotations).
+TEST(ImbalanceLeastSquares, KrylovStepIsTheLeastSquaresStepModuloRotations)
+{
+  const std::string name = "triceratops.off";
+  const SPI::Mesh_arrays arrays = arrays_of(read_mesh(cgal_data + "/" + name));
+  const SPI::Sphere_system system = system_of(arrays, SP::Weighting::MEAN_VALUE);
+  const std::vector<SPI::Vector3> x = derivative_test_map(name, arrays, system);
+  SPI::Imbalance_least_squares problem(system);
+  problem.evaluate(x, 0.);
+  problem.linearize(x, 0.);
+  SPI::Solver_tuning tuning;
+  tuning.krylov_max_forcing = 1e-6; // the first step's forcing
+  tuning.krylov_left_tolerance = 1e-8;
+  std::vector<SPI::Vector3> d;
+  ASSERT_TRUE(problem.krylov_gauss_newton_step(x, d, tuning));
+  EXPECT_LT(problem.slope(), 0.);
+  const std::vector<SPI::Vector3> t1 = problem.frame1(), t2 = problem.frame2();
+  SPI::Tangent_basis3 rotations;
+  rotations.set_rotations(x, t1, t2);
+  const std::size_t n = x.size();
+  Eigen::VectorXd delta(static_cast<Eigen::Index>(2 * n));
+  for(std::size_t i = 0; i < n; ++i)
+  {
+    delta[static_cast<Eigen::Index>(2 * i)] = SPI::dot(t1[i], d[i]);
+    delta[static_cast<Eigen::Index>(2 * i + 1)] = SPI::dot(t2[i], d[i]);
+  }
+  double c[3];
+  rotations.coordinates(delta.data(), c);
+  for(double coordinate : c)
+    EXPECT_LT(std::abs(coordinate), 1e-10 * delta.norm());
+  const Eigen::SparseMatrix<double>& J = problem.jacobian();
+  Eigen::VectorXd model = Eigen::SparseMatrix<double>(J.transpose()) * (J * delta);
+  model += problem.gradient();
+  rotations.project_out(model.data());
+  EXPECT_LT(model.norm(), 1e-4 * problem.gradient().norm());
+}
+
 TEST(AdmissibleWeights, AreSymmetricAndPositive)
 {
   const SPI::Mesh_arrays arrays = arrays_of(read_mesh(cgal_data + "/triceratops.off"));

@@ -104,6 +104,22 @@ struct Solver_tuning
   // The plain Gauss-Newton steps (one sparse LU each) give way to Marquardt's (a Cholesky factorization of J^T J)
   // once the worst stationarity has not halved in this many steps.
   std::size_t least_squares_plain_window = 5;
+  // The plain steps by GMRES with the multigrid (krylov_gauss_newton_step()) instead of one sparse LU each, from this
+  // many vertices on: measured time per step, GMRES against the LU, 0.20 s against 0.15 s at 6.7k vertices
+  // (c3d_cheburashka), 0.16 s against 0.30 s at 10k (bear_bis), 0.45 s against 1.05 s at 38k (bunny00).
+  std::size_t least_squares_krylov_vertices = 10000;
+  // Their inexact-Newton forcing term, on the linear model's gradient (Eisenstat and Walker's choice 2:
+  // gamma (|g_k| / |g_k-1|)^2, safeguarded), within bounds.
+  double krylov_forcing_gamma = 0.9;
+  double krylov_max_forcing = 0.1;
+  double krylov_min_forcing = 1e-6;
+  // The relative residual of the three transposed solves that refine the left null space at each step: each step
+  // starts from the previous one's, so the error still shrinks step after step (bunny00: 1e-3 and 1e-2 take the
+  // same 18 steps, 1e-2 a sixth fewer GMRES iterations; 1e-1 two steps more).
+  double krylov_left_tolerance = 1e-2;
+  int krylov_max_iterations = 300;
+  // GMRES(30) stagnated on the transposed solves of oded_hammer (715 iterations in one step); GMRES(60) does not.
+  int krylov_restart = 60;
 };
 
 } // namespace internal

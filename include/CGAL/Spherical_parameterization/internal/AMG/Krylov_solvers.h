@@ -207,13 +207,14 @@ Krylov_result bicgstab(const Compressed_row_matrix& A, const double* b, double* 
 }
 
 // Restarted GMRES(m) with right preconditioning and Givens rotations; one preconditioner application per
-// iteration plus one per restart (x += M^{-1} V y).
-template <class Preconditioner>
-Krylov_result gmres(const Compressed_row_matrix& A, const double* b, double* x, Preconditioner& apply_preconditioner,
-                    double target_residual_norm, double reference_norm, int max_iterations, int restart_length,
-                    Krylov_workspace& workspace)
+// iteration plus one per restart (x += M^{-1} V y). Matrix-free: apply_operator(in, out) is out = A in and
+// compute_residual(x, b, r) is r = b - A x, on arrays of n values (stage 3's Jacobians are not stored as
+// Compressed_row_matrix).
+template <class Operator, class Residual, class Preconditioner>
+Krylov_result gmres(Operator& apply_operator, Residual& compute_residual, Index n, const double* b, double* x,
+                    Preconditioner& apply_preconditioner, double target_residual_norm, double reference_norm,
+                    int max_iterations, int restart_length, Krylov_workspace& workspace)
 {
-  const Index n = A.number_of_rows;
   const int m = std::max(restart_length, 1);
   double* r = workspace.vector(0, n);
   double* z = workspace.vector(1, n);
@@ -223,8 +224,13 @@ Krylov_result gmres(const Compressed_row_matrix& A, const double* b, double* x, 
 
   while(true)
   {
-    double residual_norm = 0.;
-    if(ends_at_true_residual(A, x, b, r, target_residual_norm, reference_norm, max_iterations, result, residual_norm))
+    compute_residual(x, b, r);
+    const double residual_norm = norm(r, n);
+    result.relative_residual = residual_norm / reference_norm;
+    if(!std::isfinite(residual_norm))
+      return result;
+    result.converged = residual_norm <= target_residual_norm;
+    if(result.converged || result.iterations >= max_iterations)
       return result;
 
     double* v0 = workspace.vector(2, n);
@@ -238,7 +244,7 @@ Krylov_result gmres(const Compressed_row_matrix& A, const double* b, double* x, 
       double* h = &hessenberg[std::size_t(k) * (m + 1)];
       apply_preconditioner(workspace.vectors[2 + k].data(), z);
       double* w = workspace.vector(2 + k + 1, n);
-      multiply(A, z, w);
+      apply_operator(z, w);
       for(int i = 0; i <= k; ++i) // modified Gram-Schmidt
       {
         const double* vi = workspace.vectors[2 + i].data();
@@ -291,6 +297,18 @@ Krylov_result gmres(const Compressed_row_matrix& A, const double* b, double* x, 
     for(Index i = 0; i < n; ++i)
       x[i] += z[i];
   }
+}
+
+// The same GMRES on a stored matrix.
+template <class Preconditioner>
+Krylov_result gmres(const Compressed_row_matrix& A, const double* b, double* x, Preconditioner& apply_preconditioner,
+                    double target_residual_norm, double reference_norm, int max_iterations, int restart_length,
+                    Krylov_workspace& workspace)
+{
+  auto apply_operator = [&A](const double* in, double* out) { multiply(A, in, out); };
+  auto compute_residual = [&A](const double* in, const double* rhs, double* r) { residual(A, in, rhs, r); };
+  return gmres(apply_operator, compute_residual, A.number_of_rows, b, x, apply_preconditioner, target_residual_norm,
+               reference_norm, max_iterations, restart_length, workspace);
 }
 
 // Preconditioned MINRES (Paige and Saunders, 1975) for a symmetric, possibly indefinite operator with a symmetric

@@ -16,7 +16,9 @@
 // least-squares problem the collapse onto a point solves (every F_i -> 0), Psi is scale-free: a collapse keeps the
 // imbalances near 0.5, so the iterations are not drawn along the boosts towards it.
 // Steps, in tangent coordinates, each cut back until Phi decreases (Armijo) and every triangle stays positive:
-// - plain Gauss-Newton steps d = -J^+ r from one sparse LU of J (gauss_newton_step());
+// - plain Gauss-Newton steps d = -J^+ r (rotations left out), from one sparse LU of J (gauss_newton_step()) or, from
+//   Solver_tuning::least_squares_krylov_vertices on, by GMRES with the weights' multigrid
+//   (krylov_gauss_newton_step(), with the LU as its fallback);
 // - Marquardt's steps (J^T J + B + lambda diag(J^T J)) d = -grad Phi where those crawl or do not descend (step());
 // - where the triangles stop the steps, the minimum subject to det(x_a, x_b, x_c) > 0 through
 //   Phi_mu(x) = Psi(x) - mu sum_f c_f log det_f, with B = mu sum_f c_f b_f b_f^T / det_f^2 the barrier's positive
@@ -35,6 +37,7 @@
 #include <CGAL/Spherical_parameterization/internal/iteration_driver.h>
 #include <CGAL/Spherical_parameterization/internal/stage3/constrained_balance.h>
 #include <CGAL/Spherical_parameterization/internal/stage3/sparse_factorization.h>
+#include <CGAL/Spherical_parameterization/internal/stage3/tangent_multigrid.h>
 #include <CGAL/Spherical_parameterization/internal/stage3/tangent_newton_system.h>
 
 #include <Eigen/Sparse>
@@ -236,6 +239,234 @@ public:
     return to_tangent_vectors(delta, d) && m_slope < 0.;
   }
 
+  // The same least-squares step d = -J^+ r, iteratively (after linearize(x, 0)): GMRES on J, preconditioned by one
+  // multigrid V-cycle of the weights' Laplacian, solved to the relative residual `forcing` (inexact Newton). False
+  // when a solve fails (then gauss_newton_step() is the fallback).
+  // Scaling: row i of J carries 1/l_i, and the normalized weights divide by the raw row sum rho_i, so
+  // J^ = S J with S = diag(rho_i l_i) is, up to the frames' rotations and the derivatives of l_i, minus the raw
+  // weights' Laplacian: J^ is solved with the V-cycle as right preconditioner (its rows then have comparable sizes).
+  // The step is fixed by two 3-dimensional spaces. N, the rotations, is known. L^, the left null space of J^ modulo
+  // rotations (P_N J^^T z = 0), is not: starting from a guess U (the previous step's L^, moved to the new frames, or
+  // the rotations, which it is for symmetric weights), z_k = u_k + w_k with w_k solving the transposed system
+  //   (P_N J^^T P_U + N U^T) w_k = -P_N J^^T u_k,
+  // nonsingular by construction; the solution has U^T w_k = 0 and P_N J^^T z_k = 0. Near a stationary point r lies
+  // almost entirely in L = S L^, so L must be accurate where P_L r is small: each step refines the previous L^ (an
+  // inverse iteration), to the relative residual krylov_left_tolerance. With L, J d = -(r - P_L r) (Euclidean
+  // projection: the step is then a descent direction for the inexact solve too, its error lying in L's complement),
+  // d orthogonal to N, is the nonsingular system
+  //   (P_L^ J^ P_N + Q N^T) d = -S (r - P_L r),   Q an orthonormal basis of L^.
+  bool krylov_gauss_newton_step(const std::vector<Vector3>& x, std::vector<Vector3>& d, const Solver_tuning& tuning)
+  {
+    const double left_tolerance = tuning.krylov_left_tolerance;
+    const int max_iterations = tuning.krylov_max_iterations;
+    const int restart_length = tuning.krylov_restart;
+    const std::size_t n = m_system.number_of_vertices;
+    const std::size_t m = 2 * n;
+    if(!m_multigrid.is_built() && !m_multigrid.build(m_system, true))
+      return false;
+    m_row_scale.resize(n);
+    for(std::size_t i = 0; i < n; ++i)
+    {
+      m_row_scale[i] = std::abs(m_system.row_sums[i]) * m_terms.scale[i];
+      if(!(m_row_scale[i] > 0.) || !std::isfinite(m_row_scale[i]))
+        return false; // a zero row of J: its rank drops below 2n - 3, left to the LU
+    }
+    m_rotations.set_rotations(x, m_t1, m_t2);
+    // U: the previous L^ in the new frames, or the rotations.
+    bool have_guess = m_left_ambient[0].size() == n;
+    if(have_guess)
+    {
+      for(std::size_t k = 0; k < 3; ++k)
+      {
+        m_left[k].resize(m);
+        for(std::size_t i = 0; i < n; ++i)
+        {
+          m_left[k][2 * i] = dot(m_t1[i], m_left_ambient[k][i]);
+          m_left[k][2 * i + 1] = dot(m_t2[i], m_left_ambient[k][i]);
+        }
+      }
+      have_guess = m_left.orthonormalize();
+    }
+    if(!have_guess)
+      for(std::size_t k = 0; k < 3; ++k)
+        m_left[k] = m_rotations[k];
+    m_krylov_iterations = 0;
+
+    // Scaled products: out = J^ in and out = J^^T in.
+    m_in.resize(static_cast<Eigen::Index>(m));
+    m_out.resize(static_cast<Eigen::Index>(m));
+    auto scaled_jacobian = [&](const double* in, double* out) {
+      std::copy(in, in + m, m_in.data());
+      m_out.noalias() = m_jacobian * m_in;
+      for(std::size_t r = 0; r < m; ++r)
+        out[r] = m_row_scale[r / 2] * m_out[Eigen::Index(r)];
+    };
+    auto scaled_jacobian_transpose = [&](const double* in, double* out) {
+      for(std::size_t r = 0; r < m; ++r)
+        m_in[Eigen::Index(r)] = m_row_scale[r / 2] * in[r];
+      m_out.noalias() = m_jacobian.transpose() * m_in;
+      std::copy(m_out.data(), m_out.data() + m, out);
+    };
+    // The bordered operator (P_B A P_C + B C^T) and its preconditioner (-P_C V P_B + C B^T), A = J^ with (B, C) =
+    // (Q, N), or A = J^^T with (B, C) = (N, U).
+    m_scratch.resize(m);
+    auto bordered = [&](auto& product, const Tangent_basis3& range_complement, const Tangent_basis3& domain_null) {
+      return [&, product](const double* in, double* out) mutable {
+        double c[3];
+        domain_null.coordinates(in, c);
+        domain_null.project_out(in, m_scratch.data());
+        product(m_scratch.data(), out);
+        range_complement.project_out(out);
+        for(std::size_t k = 0; k < 3; ++k)
+          for(std::size_t r = 0; r < m; ++r)
+            out[r] += c[k] * range_complement[k][r];
+      };
+    };
+    auto bordered_preconditioner = [&](const Tangent_basis3& range_complement, const Tangent_basis3& domain_null) {
+      return [&](const double* in, double* out) {
+        double c[3];
+        range_complement.coordinates(in, c);
+        range_complement.project_out(in, m_scratch.data());
+        m_multigrid.apply(m_t1, m_t2, m_scratch.data(), out);
+        for(std::size_t r = 0; r < m; ++r)
+          out[r] = -out[r];
+        domain_null.project_out(out);
+        for(std::size_t k = 0; k < 3; ++k)
+          for(std::size_t r = 0; r < m; ++r)
+            out[r] += c[k] * domain_null[k][r];
+      };
+    };
+    auto solve = [&](auto& apply, auto& precondition, const std::vector<double>& rhs, std::vector<double>& solution,
+                     double tolerance, bool from_zero = true) {
+      const double rhs_norm = AMG::norm(rhs.data(), AMG::Index(m));
+      if(from_zero)
+        solution.assign(m, 0.);
+      if(!(rhs_norm > 0.))
+        return std::isfinite(rhs_norm);
+      m_residual_work.resize(m);
+      auto residual = [&](const double* in, const double* b, double* r) {
+        apply(in, m_residual_work.data());
+        for(std::size_t k = 0; k < m; ++k)
+          r[k] = b[k] - m_residual_work[k];
+      };
+      const AMG::Krylov_result result =
+          AMG::gmres(apply, residual, AMG::Index(m), rhs.data(), solution.data(), precondition, tolerance * rhs_norm,
+                     rhs_norm, max_iterations, restart_length, m_workspace);
+      m_krylov_iterations += result.iterations;
+      // Not converged in max_iterations but well reduced: still a useful step (the line search judges it).
+      return std::isfinite(result.relative_residual) && result.relative_residual <= std::max(tolerance, 0.5);
+    };
+
+    // L^: three transposed solves.
+    {
+      auto apply = bordered(scaled_jacobian_transpose, m_rotations, m_left);
+      auto precondition = bordered_preconditioner(m_rotations, m_left);
+      Tangent_basis3 z;
+      for(std::size_t k = 0; k < 3; ++k)
+      {
+        m_rhs.resize(m);
+        scaled_jacobian_transpose(m_left[k].data(), m_rhs.data());
+        m_rotations.project_out(m_rhs.data());
+        for(double& value : m_rhs)
+          value = -value;
+        if(!solve(apply, precondition, m_rhs, m_solution, left_tolerance))
+          return false;
+        z[k].resize(m);
+        for(std::size_t r = 0; r < m; ++r)
+          z[k][r] = m_left[k][r] + m_solution[r];
+      }
+      if(!z.orthonormalize())
+        return false;
+      m_left_iterations = m_krylov_iterations;
+      for(std::size_t k = 0; k < 3; ++k)
+        m_left[k] = z[k];
+    }
+    // L = S L^ in the Euclidean metric, and the right-hand side -S (r - P_L r).
+    Tangent_basis3 left_euclidean;
+    for(std::size_t k = 0; k < 3; ++k)
+    {
+      left_euclidean[k].resize(m);
+      for(std::size_t r = 0; r < m; ++r)
+        left_euclidean[k][r] = m_row_scale[r / 2] * m_left[k][r];
+    }
+    if(!left_euclidean.orthonormalize())
+      return false;
+    m_rhs.resize(m);
+    for(std::size_t r = 0; r < m; ++r)
+      m_rhs[r] = m_residual[Eigen::Index(r)];
+    left_euclidean.project_out(m_rhs.data());
+    for(std::size_t r = 0; r < m; ++r)
+      m_rhs[r] = -m_row_scale[r / 2] * m_rhs[r];
+    // The inexact Gauss-Newton step asks the linear model's gradient J^T (J d + r) to be at most eta times the
+    // gradient J^T r (Gratton, Lawless and Nichols, 2007), both in the norm of the stationarity test (vertex k's
+    // two entries over S_k); the residual of J d = -(r - P_L r) alone says little about it (armadillo: the
+    // stationarity stalled, and Marquardt's factorizations took over). eta: Eisenstat and Walker's choice 2 on
+    // that gradient, at most krylov_max_forcing.
+    m_stationarity_scale = stationarity_scales();
+    auto gradient_norm = [&](const Eigen::VectorXd& g) {
+      double sum = 0.;
+      for(std::size_t i = 0; i < n; ++i)
+      {
+        const double a = g[Eigen::Index(2 * i)], b = g[Eigen::Index(2 * i + 1)];
+        const double size = m_stationarity_scale[i] > 0. ? m_stationarity_scale[i] : 1.;
+        sum += (a * a + b * b) / (size * size);
+      }
+      return std::sqrt(sum);
+    };
+    const double reducible = gradient_norm(m_gradient);
+    double forcing = tuning.krylov_max_forcing;
+    if(m_previous_reducible > 0.)
+    {
+      const double ratio = reducible / m_previous_reducible;
+      forcing = tuning.krylov_forcing_gamma * ratio * ratio;
+      const double safeguard = tuning.krylov_forcing_gamma * m_forcing * m_forcing;
+      if(safeguard > 0.1)
+        forcing = std::max(forcing, safeguard);
+      forcing = std::min(std::max(forcing, tuning.krylov_min_forcing), tuning.krylov_max_forcing);
+    }
+    m_forcing = forcing;
+    m_previous_reducible = reducible;
+    {
+      auto apply = bordered(scaled_jacobian, m_left, m_rotations);
+      auto precondition = bordered_preconditioner(m_left, m_rotations);
+      double tolerance = forcing;
+      for(int round = 0;; ++round)
+      {
+        if(!solve(apply, precondition, m_rhs, m_solution, tolerance, round == 0))
+          return false;
+        // The linear model's gradient J^T (J d + r), d without its rotation part.
+        m_delta = Eigen::Map<const Eigen::VectorXd>(m_solution.data(), Eigen::Index(m));
+        m_rotations.project_out(m_delta.data());
+        m_out.noalias() = m_jacobian * m_delta;
+        m_out += m_residual;
+        m_in.noalias() = m_jacobian.transpose() * m_out;
+        // Its rotation part, (J N)^T (J d + r), is not the step's to remove (J N = 0 only where r = 0), and the
+        // gradient J^T r has none (Psi is invariant under rotations).
+        m_rotations.project_out(m_in.data());
+        const double model_gradient = gradient_norm(m_in);
+        if(!std::isfinite(model_gradient))
+          return false;
+        if(model_gradient <= forcing * reducible || round == 4)
+          break;
+        tolerance *= 0.1;
+      }
+    }
+    m_rotations.project_out(m_solution.data());
+    // L^ as ambient fields, for the next step's frames.
+    for(std::size_t k = 0; k < 3; ++k)
+    {
+      m_left_ambient[k].resize(n);
+      for(std::size_t i = 0; i < n; ++i)
+        m_left_ambient[k][i] = m_left[k][2 * i] * m_t1[i] + m_left[k][2 * i + 1] * m_t2[i];
+    }
+    Eigen::VectorXd delta = Eigen::Map<const Eigen::VectorXd>(m_solution.data(), Eigen::Index(m));
+    return to_tangent_vectors(delta, d) && m_slope < 0.;
+  }
+
+  int krylov_iterations() const { return m_krylov_iterations; }
+  int left_iterations() const { return m_left_iterations; }
+  double forcing() const { return m_forcing; }
+
   // The Gauss-Newton step with the relative Marquardt shift `lambda` (after linearize()), as tangent vectors.
   bool step(const std::vector<Vector3>& x, double mu, double lambda, std::vector<Vector3>& d)
   {
@@ -315,6 +546,17 @@ private:
   double m_slope = 0.;
   Sparse_ldlt m_ldlt; // J^T J + B + lambda diag(J^T J), Marquardt's steps
   Sparse_lu m_lu;     // J, the plain Gauss-Newton steps
+  // The plain steps by GMRES (krylov_gauss_newton_step()).
+  Tangent_laplacian_preconditioner m_multigrid;
+  Tangent_basis3 m_rotations, m_left;     // N (rotations) and L^, orthonormal
+  std::vector<Vector3> m_left_ambient[3]; // L^ of the last step, as ambient fields
+  std::vector<double> m_row_scale;        // rho_i l_i
+  std::vector<double> m_rhs, m_solution, m_scratch, m_residual_work;
+  Eigen::VectorXd m_in, m_out, m_delta;
+  std::vector<double> m_stationarity_scale;
+  AMG::Krylov_workspace m_workspace;
+  int m_krylov_iterations = 0, m_left_iterations = 0;
+  double m_forcing = 0., m_previous_reducible = 0.;
 };
 
 struct Least_squares_report
@@ -343,6 +585,7 @@ inline Least_squares_report imbalance_least_squares(Sphere_state& state, const I
   if(state.invalid_faces() != 0)
     return report;
   Imbalance_least_squares problem(system);
+  const bool use_krylov = n >= tuning.least_squares_krylov_vertices;
   std::vector<Vector3>& x = state.positions();
   std::vector<Vector3> d, trial(n), best = x;
   double best_psi = problem.evaluate(x, 0.);
@@ -414,7 +657,16 @@ inline Least_squares_report imbalance_least_squares(Sphere_state& state, const I
     {
       // Without the barrier, the plain Gauss-Newton step first; Marquardt's steps when it does not lower Phi.
       const bool plain = attempt == 0 && mu == 0. && plain_steps_allowed;
-      if(plain ? !problem.gauss_newton_step(x, d) : !problem.step(x, mu, lambda, d))
+      // The plain step by GMRES on large meshes, the sparse LU where GMRES fails.
+      auto plain_step = [&]() {
+        if(use_krylov)
+        {
+          if(problem.krylov_gauss_newton_step(x, d, tuning))
+            return true;
+        }
+        return problem.gauss_newton_step(x, d);
+      };
+      if(plain ? !plain_step() : !problem.step(x, mu, lambda, d))
       {
         lambda = std::min(lambda * 10., tuning.marquardt_max);
         continue;
