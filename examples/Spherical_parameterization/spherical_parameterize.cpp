@@ -152,7 +152,8 @@ void print_usage(std::ostream& out)
          "  \"GENUS_NOT_ZERO\"), success, skipped (an existing output kept: most figures null), message,\n"
          "  vertices, faces, weights, criterion, tolerance, max_imbalance,\n"
          "  imbalance_percentile_99, unbalanced_vertices, vertices_at_rounding_floor,\n"
-         "  vertices_below_precision (neighbourhoods within about 28 ulps: counted, not tested), max_stationarity and\n"
+         "  vertices_below_precision (neighbourhoods within about 28 ulps: counted, not tested),\n"
+         "  regularized_tip_vertices (arm tips whose balanced map double cannot hold; among the previous), max_stationarity and\n"
          "  unstationary_vertices (non-symmetric weights, else null), residual (Res),\n"
          "  max_tangential_residual, flipped_faces, total_signed_area, bijective, initial_flipped_faces,\n"
          "  uniform_initial_guess_fallback, admissible_weights, raised_weights, clamped_weights, rejected_moves,\n"
@@ -517,6 +518,7 @@ void print_json(std::ostream& out, const SP::Result& r, const Run_figures& run)
       {"unstationary_vertices", json_count(r.unstationary_vertices, computed && r.max_stationarity >= 0.)},
       {"vertices_at_rounding_floor", json_count(r.vertices_at_rounding_floor, computed)},
       {"vertices_below_precision", json_count(r.vertices_below_precision, computed)},
+      {"regularized_tip_vertices", json_count(r.regularized_tip_vertices, computed)},
       {"residual", json_number(r.residual, computed)},
       {"max_tangential_residual", json_number(r.max_tangential_residual, computed)},
       {"flipped_faces", json_count(r.flipped_faces, certified)},
@@ -570,7 +572,11 @@ void print_text(std::ostream& out, const SP::Result& r, const Run_figures& run)
       << (r.unbalanced_vertices == 1 ? " vertex" : " vertices") << " above the tolerance " << run.tolerance << ", "
       << r.vertices_at_rounding_floor << " held to their rounding floor"
       << (r.vertices_below_precision > 0
-              ? ", " + std::to_string(r.vertices_below_precision) + " below double precision (not tested)"
+              ? ", " + std::to_string(r.vertices_below_precision) + " below double precision (not tested"
+                    + (r.regularized_tip_vertices > 0
+                           ? "; " + std::to_string(r.regularized_tip_vertices) + " of them in arm tips solved with regularized weights"
+                           : std::string())
+                    + ")"
               : std::string())
       << "; " << run.weights << " weights, stopping on " << run.criterion << ")\n"
       << (r.max_stationarity >= 0. ? "stationarity:    " : "");

@@ -77,6 +77,12 @@ struct Result
   /// are counted here and not tested (nor in `max_imbalance`); every vertex around them is. The certificate covers
   /// them like every other vertex.
   std::size_t vertices_below_precision = 0;
+  /// Vertices of arm tips whose balanced positions lie below double precision, so that the balanced map rounded to
+  /// double has non-positive triangles there: they were solved with weights weakened along the arm's rings, which
+  /// keeps the tip orders of magnitude above rounding and bijective, and are counted in `vertices_below_precision`,
+  /// not tested. Every other vertex keeps its own equation and is tested. 0 on most meshes (the manual's
+  /// "Converged" section).
+  std::size_t regularized_tip_vertices = 0;
   /// Vertices whose imbalance exceeds the tolerance (or their rounding floor, where it is larger), or whose floor
   /// exceeds 1/2 (vertices below double precision excepted); 0 when balanced.
   std::size_t unbalanced_vertices = 0;

@@ -234,6 +234,7 @@ private:
     m_result.initial_guess.residual = smoothed.residual;
     // The map carried back is close to the solution: the boost equations are solved as equations (Boost_aim).
     m_newton = full_newton_steps(state, level_options, iterations_clock, Boost_aim::ROOT);
+    m_system.regularized_tips = m_newton.regularized_tips;
     m_cancelled = m_cancelled || m_newton.cancelled;
     m_multilevel_newton_seconds = iterations_clock.time();
     m_result.levels = coarse.levels;
@@ -390,6 +391,7 @@ private:
         m_iteration_options.max_newton_sweeps = 0;
       }
       m_cancelled = direct_newton.cancelled;
+      m_system.regularized_tips = direct_newton.regularized_tips;
       if(!direct_newton.converged && !m_cancelled && !direct_newton.out_of_time)
         state.assign(initial_guess);
       if(m_iteration_options.max_newton_sweeps > direct_newton.sweeps)
@@ -423,6 +425,8 @@ private:
     else
       m_newton.residual = gauss_seidel.residual;
     m_cancelled = m_cancelled || m_newton.cancelled;
+    if(!direct_done)
+      m_system.regularized_tips = m_newton.regularized_tips;
     m_result.newton.iterations = m_newton.sweeps + direct_newton.sweeps;
     m_result.newton.linear_iterations = m_newton.linear_iterations + direct_newton.linear_iterations;
     m_result.newton.residual = direct_done ? direct_newton.residual : m_newton.residual;
@@ -451,6 +455,8 @@ private:
     m_result.imbalance_percentile_99 = imbalance.percentile_99;
     m_result.vertices_at_rounding_floor = imbalance.vertices_at_rounding_floor;
     m_result.vertices_below_precision = imbalance.vertices_below_precision;
+    m_result.regularized_tip_vertices = static_cast<std::size_t>(
+        std::count(m_system.regularized_tips.begin(), m_system.regularized_tips.end(), char(1)));
     m_result.unbalanced_vertices = imbalance.unbalanced_vertices;
     m_result.convergence_test = m_iteration_options.convergence_test;
     Imbalance_summary stationarity;

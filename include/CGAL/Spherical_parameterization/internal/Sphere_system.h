@@ -47,6 +47,9 @@ struct Sphere_system
   std::size_t clamped_weights = 0;  // weights with a degenerate corner or edge, bounded (see out_of_bounds)
   std::vector<int> ring_faces;      // for the entry (i, j = ring[k]): the face (i, ring[k], ring[k+1])
   std::vector<std::array<int, 3>> triangles;
+  // Vertices of arm tips solved with regularized weights because their balanced positions lie below double precision
+  // (stage3/tip_regularization.h): counted, not tested. Empty when there are none.
+  std::vector<char> regularized_tips;
 
   std::size_t degree(std::size_t i) const { return offsets[i + 1] - offsets[i]; }
 };
@@ -437,7 +440,8 @@ inline Vertex_imbalance vertex_imbalance(const Sphere_system& system, const std:
     result.imbalance = tangential > 0. ? HUGE_VAL : 0.;
     result.rounding_floor = HUGE_VAL;
   }
-  result.below_precision = chordal_scale <= below_precision_mean_chord * weight_magnitude;
+  result.below_precision = chordal_scale <= below_precision_mean_chord * weight_magnitude
+                           || (!system.regularized_tips.empty() && system.regularized_tips[i]);
   result.chordal_imbalance = chordal_scale > 0. ? tangential / chordal_scale : result.imbalance;
   if(!(result.imbalance == result.imbalance))
     result.imbalance = HUGE_VAL; // NaN positions are never balanced

@@ -56,6 +56,8 @@ struct Iteration_report
   std::size_t rejected_moves = 0;
   std::size_t linear_iterations = 0;   // iterations of the iterative linear solver (MINRES), if one ran
   double continuation_parameter = -1.; // how far the continuation from Tutte's weights got (-1: not tried)
+  // The tips solved with regularized weights (stage3/tip_regularization.h) when the map returned needed them.
+  std::vector<char> regularized_tips;
 };
 
 // The time budget, checked between iterations and, inside the long ones, between their parts.

@@ -62,6 +62,16 @@ struct Solver_tuning
   int local_sweeps_without_step = 5;           // Moebius-aware Newton
   int cautious_local_sweeps_without_step = 20; // cautious Newton
 
+  // --- Arm tips below double precision (tip_regularization.h) ---
+  // A balanced map whose non-positive faces all touch vertices with a mean chord below tip_scale has its tips (the
+  // regions below tip_scale around those faces) solved again with weights that fall by tip_weight_ratio_per_ring per
+  // ring from the third ring in, placed by one linear solve with the band below tip_band_scale around them. On the
+  // thin-arms surfaces of the corpus, 2e-2 keeps the smallest tip edges at 4e-14 to 1e-13 (from below 1e-17) with
+  // no fold; starting the decay at the first ring folded faces next to the rest of the mesh.
+  double tip_scale = 1e-9;
+  double tip_weight_ratio_per_ring = 2e-2;
+  double tip_band_scale = 1e-6;
+
   // --- The boosts (mobius.h) ---
   // Before each Newton step the boosts are balanced until |g| <= boost_target_factor * Res * n (small next to the
   // residual forces that the step removes), at most `boost_max_iterations` Newton steps on the boost parameters,

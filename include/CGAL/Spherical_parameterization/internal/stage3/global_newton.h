@@ -30,6 +30,7 @@
 #include <CGAL/Spherical_parameterization/internal/stage3/mobius_newton.h>
 #include <CGAL/Spherical_parameterization/internal/stage3/sparse_factorization.h>
 #include <CGAL/Spherical_parameterization/internal/stage3/tangent_newton_system.h>
+#include <CGAL/Spherical_parameterization/internal/stage3/tip_regularization.h>
 #include <CGAL/Spherical_parameterization/internal/stage3/weight_continuation.h>
 
 #include <Eigen/Sparse>
@@ -273,6 +274,54 @@ inline bool has_tutte_weights(const Sphere_system& system)
   return true;
 }
 
+// Newton's full steps through folds (mobius_newton with allow_folds). When they end on a balanced map whose
+// non-positive faces all lie in arm tips below double precision, the tips are regularized (tip_regularization.h)
+// and the steps go on from that map under those weights; the report then names the tips (regularized_tips).
+inline Iteration_report newton_through_folds(Sphere_state& state, const Iteration_options& options,
+                                             const CGAL::Real_timer& clock, Mobius_newton_statistics* statistics,
+                                             Step_merit step_merit = Step_merit::RESIDUAL,
+                                             Boost_aim boost_aim = Boost_aim::MAXIMUM)
+{
+  Mobius_newton_statistics counts;
+  Iteration_report report =
+      mobius_newton(state, options, clock, &counts, options.tuning.free_newton_patience, true, step_merit, boost_aim);
+  if(!counts.folded_balanced_map.empty() && !report.cancelled && !report.out_of_time)
+  {
+    const Sphere_system& system = state.system();
+    std::vector<char> tips = unresolvable_tips(system, counts.folded_balanced_map, options.tuning.tip_scale);
+    if(!tips.empty())
+    {
+      const Sphere_system regularized = regularize_tips(system, tips, options.tuning.tip_weight_ratio_per_ring);
+      std::vector<Vector3> x = counts.folded_balanced_map;
+      if(place_tips(regularized, tips, options.tuning.tip_band_scale, x))
+      {
+        Sphere_state tip_state(regularized, x);
+        Iteration_options remaining = options;
+        remaining.max_newton_sweeps =
+            options.max_newton_sweeps > report.sweeps ? options.max_newton_sweeps - report.sweeps : 0;
+        Mobius_newton_statistics tip_counts;
+        Iteration_report tip_report = mobius_newton(tip_state, remaining, clock, &tip_counts,
+                                                    options.tuning.free_newton_patience, true, step_merit, boost_aim);
+        if(tip_report.converged || tip_report.cancelled || tip_report.out_of_time)
+        {
+          state.assign(x);
+          tip_report.sweeps += report.sweeps;
+          tip_report.linear_iterations += report.linear_iterations;
+          tip_report.rejected_moves += report.rejected_moves;
+          tip_report.regularized_tips = std::move(tips);
+          tip_counts.newton_steps += counts.newton_steps;
+          tip_counts.linear_iterations += counts.linear_iterations;
+          report = std::move(tip_report);
+          counts = std::move(tip_counts);
+        }
+      }
+    }
+  }
+  if(statistics != nullptr)
+    *statistics = std::move(counts);
+  return report;
+}
+
 // Newton's full steps through folds from the current map; when they do not converge (nor were stopped), once more
 // from the same map with the line search on the scale-free imbalances instead of Res (see Step_merit: Res led
 // some steps along the boosts towards a collapse). The first phase from the two-disk guess and on each multilevel
@@ -281,14 +330,12 @@ inline Iteration_report full_newton_steps(Sphere_state& state, const Iteration_o
                                           const CGAL::Real_timer& clock, Boost_aim boost_aim = Boost_aim::MAXIMUM)
 {
   const std::vector<Vector3> start = state.positions();
-  Iteration_report report = mobius_newton(state, options, clock, nullptr, options.tuning.free_newton_patience, true,
-                                          Step_merit::RESIDUAL, boost_aim);
+  Iteration_report report = newton_through_folds(state, options, clock, nullptr, Step_merit::RESIDUAL, boost_aim);
   if(report.converged || report.cancelled || report.out_of_time)
     return report;
   state.assign(start);
   const Iteration_report first = report;
-  report = mobius_newton(state, options, clock, nullptr, options.tuning.free_newton_patience, true,
-                         Step_merit::IMBALANCE, boost_aim);
+  report = newton_through_folds(state, options, clock, nullptr, Step_merit::IMBALANCE, boost_aim);
   report.sweeps += first.sweeps;
   report.linear_iterations += first.linear_iterations;
   return report;
@@ -338,8 +385,7 @@ inline Iteration_report global_newton(Sphere_state& state, const Iteration_optio
     return least_squares_newton(state, options, clock);
   // Full Newton steps through folds first: on most meshes the fastest way to the balanced map.
   Mobius_newton_statistics statistics;
-  Iteration_report free_steps =
-      mobius_newton(state, options, clock, &statistics, options.tuning.free_newton_patience, true);
+  Iteration_report free_steps = newton_through_folds(state, options, clock, &statistics);
   if(free_steps.converged || free_steps.cancelled || free_steps.out_of_time)
     return free_steps;
   // Otherwise from where it started (restored: its best iterate has the fewest non-positive faces), with every step

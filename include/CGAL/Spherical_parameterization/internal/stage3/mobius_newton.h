@@ -39,6 +39,8 @@ struct Mobius_newton_statistics
   std::size_t newton_steps = 0;      // accepted Newton steps
   bool gave_up = false;              // Newton's steps were too short: the caller should continue otherwise
   std::size_t linear_iterations = 0; // MINRES iterations (iterative linear solves only)
+  // The steps through folds reached a balanced map with non-positive faces: that map (tip_regularization.h).
+  std::vector<Vector3> folded_balanced_map;
 };
 
 // The signed spherical areas add up to 4 pi times the degree of the map. Folds keep the degree; a collapse of the
@@ -142,8 +144,13 @@ inline Iteration_report mobius_newton(Sphere_state& state, const Iteration_optio
   std::size_t short_steps = 0;
   while(driver.may_start())
   {
-    if(allow_folds
-       && (driver.iterations() >= patience || (state.invalid_faces() > 0 && driver.measure().imbalance.balanced())))
+    if(allow_folds && state.invalid_faces() > 0 && driver.measure().imbalance.balanced())
+    {
+      counts.folded_balanced_map = x;
+      counts.gave_up = true;
+      break;
+    }
+    if(allow_folds && driver.iterations() >= patience)
     {
       counts.gave_up = true;
       break;
