@@ -68,6 +68,12 @@ foreach(weights uniform mean_value cotangent uniform_morton_order)
   endforeach()
 endforeach()
 
+# uniform_loop1: CGAL's meshes refined by one Loop subdivision in the test (4 times the faces): meshes of a kind none of
+# the files is, whose balanced maps and solver paths differ from the originals'.
+foreach(mesh ${SP_CGAL_CORPUS})
+  sp_add_corpus_case(${SPHERICAL_PARAMETERIZATION_CGAL_DATA}/${mesh}.off uniform_loop1)
+endforeach()
+
 # Marching-tetrahedra surfaces of a ball with many thin arms (make_thin_arms_surface.py SEED ARMS RESOLUTION), made
 # once at configure time in the build folder, uniform weights: meshes of a kind none of the files above is, whose
 # balanced maps squeeze the arms' tips below double precision.

@@ -1230,6 +1230,70 @@ TEST(ImbalanceLeastSquares, KrylovStepIsTheLeastSquaresStepModuloRotations)
   EXPECT_LT(model.norm(), 1e-4 * problem.gradient().norm());
 }
 
+// The arm-tip regularization (stage3/tip_regularization.h) only acts where folds lie below double precision, keeps
+// every equation outside the tips, and keeps the weights symmetric and positive.
+TEST(TipRegularization, OnlyBelowPrecisionAndOnlyInsideTheTips)
+{
+  const SPI::Mesh_arrays arrays = arrays_of(read_mesh(cgal_data + "/triceratops.off"));
+  const SPI::Sphere_system system = system_of(arrays);
+  std::vector<SPI::Vector3> x = initial_sphere_of(arrays, system);
+  ASSERT_TRUE(SPI::certify(system.triangles, x).bijective);
+  const SPI::Solver_tuning tuning;
+  EXPECT_TRUE(SPI::unresolvable_tips(system, x, tuning.tip_scale).empty()); // no fold: nothing to do
+  // Folds at the scale of the mesh (two vertices swapped) are not a matter of precision.
+  std::vector<SPI::Vector3> folded = x;
+  std::swap(folded[0], folded[static_cast<std::size_t>(system.neighbors[system.offsets[0]])]);
+  ASSERT_GT(SPI::certify(system.triangles, folded).flipped_faces, 0u);
+  EXPECT_TRUE(SPI::unresolvable_tips(system, folded, tuning.tip_scale).empty());
+
+  // A tip: the vertices within 6 edges of vertex 0.
+  const std::size_t n = system.number_of_vertices;
+  std::vector<int> distance(n, -1);
+  std::vector<std::size_t> front(1, 0), next;
+  distance[0] = 0;
+  for(int d = 1; d <= 6; ++d)
+  {
+    next.clear();
+    for(std::size_t i : front)
+      for(std::size_t k = system.offsets[i]; k < system.offsets[i + 1]; ++k)
+      {
+        const std::size_t j = static_cast<std::size_t>(system.neighbors[k]);
+        if(distance[j] < 0)
+        {
+          distance[j] = d;
+          next.push_back(j);
+        }
+      }
+    front.swap(next);
+  }
+  std::vector<char> tip(n, 0);
+  for(std::size_t i = 0; i < n; ++i)
+    tip[i] = distance[i] >= 0;
+  const SPI::Sphere_system regularized = SPI::regularize_tips(system, tip, tuning.tip_weight_ratio_per_ring);
+  std::size_t weakened = 0;
+  for(std::size_t i = 0; i < n; ++i)
+    for(std::size_t k = system.offsets[i]; k < system.offsets[i + 1]; ++k)
+    {
+      const double raw = regularized.weights[k] * regularized.row_sums[i];
+      const std::size_t j = static_cast<std::size_t>(system.neighbors[k]);
+      const std::size_t back = system.reverse[k];
+      EXPECT_GT(raw, 0.);
+      EXPECT_NEAR(raw, regularized.weights[back] * regularized.row_sums[j], 1e-12 * raw); // symmetric
+      if(!tip[i])
+        EXPECT_EQ(regularized.weights[k], system.weights[k]); // equations outside the tips unchanged
+      weakened += raw < 0.5 * system.weights[k] * system.row_sums[i];
+    }
+  EXPECT_GT(weakened, 0u);
+  // The tip vertices are counted, not tested, once the system carries them.
+  SPI::Sphere_system marked = system;
+  marked.regularized_tips = tip;
+  const SPI::Imbalance_summary summary = SPI::summarize_imbalance(marked, x, 1e-6);
+  std::size_t tip_count = 0;
+  for(char t : tip)
+    tip_count += t != 0;
+  EXPECT_GE(summary.vertices_below_precision, tip_count);
+}
+
 TEST(AdmissibleWeights, AreSymmetricAndPositive)
 {
   const SPI::Mesh_arrays arrays = arrays_of(read_mesh(cgal_data + "/triceratops.off"));
