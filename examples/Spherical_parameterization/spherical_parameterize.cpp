@@ -153,10 +153,11 @@ void print_usage(std::ostream& out)
          "  vertices, faces, weights, criterion, tolerance, max_imbalance,\n"
          "  imbalance_percentile_99, unbalanced_vertices, vertices_at_rounding_floor,\n"
          "  vertices_below_precision (neighbourhoods within about 28 ulps: counted, not tested),\n"
-         "  regularized_tip_vertices (arm tips whose balanced map double cannot hold; among the previous), max_stationarity and\n"
-         "  unstationary_vertices (non-symmetric weights, else null), residual (Res),\n"
+         "  regularized_tip_vertices (arm tips that double cannot hold balanced, among the previous),\n"
+         "  max_stationarity and unstationary_vertices (non-symmetric weights, else null), residual (Res),\n"
          "  max_tangential_residual, flipped_faces, total_signed_area, bijective, initial_flipped_faces,\n"
-         "  uniform_initial_guess_fallback, admissible_weights, raised_weights, clamped_weights, rejected_moves,\n"
+         "  uniform_initial_guess_fallback, multilevel_fallback, admissible_weights, raised_weights,\n"
+         "  clamped_weights, rejected_moves,\n"
          "  separator_size, cut_loop_length, levels (the multilevel start, coarsest first, [] when not used:\n"
          "  [{vertices,newton_steps,linear_iterations,seconds}, ...]),\n"
          "  stages.{initial_guess,gauss_seidel,newton}.{seconds,iterations,linear_iterations,residual},\n"
@@ -526,6 +527,7 @@ void print_json(std::ostream& out, const SP::Result& r, const Run_figures& run)
       {"bijective", boolean(r.bijective)},
       {"initial_flipped_faces", json_count(r.initial_flipped_faces, computed)},
       {"uniform_initial_guess_fallback", boolean(r.uniform_initial_guess_fallback)},
+      {"multilevel_fallback", boolean(r.multilevel_fallback)},
       {"admissible_weights", boolean(r.admissible_weights)},
       {"raised_weights", std::to_string(r.raised_weights)},
       {"clamped_weights", std::to_string(r.clamped_weights)},
@@ -573,9 +575,9 @@ void print_text(std::ostream& out, const SP::Result& r, const Run_figures& run)
       << r.vertices_at_rounding_floor << " held to their rounding floor"
       << (r.vertices_below_precision > 0
               ? ", " + std::to_string(r.vertices_below_precision) + " below double precision (not tested"
-                    + (r.regularized_tip_vertices > 0
-                           ? "; " + std::to_string(r.regularized_tip_vertices) + " of them in arm tips solved with regularized weights"
-                           : std::string())
+                    + (r.regularized_tip_vertices > 0 ? "; " + std::to_string(r.regularized_tip_vertices)
+                                                            + " of them in arm tips solved with regularized weights"
+                                                      : std::string())
                     + ")"
               : std::string())
       << "; " << run.weights << " weights, stopping on " << run.criterion << ")\n"

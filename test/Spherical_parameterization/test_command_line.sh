@@ -208,7 +208,7 @@ import json, math, os, sys
 keys = {"format", "input", "output", "status", "success", "skipped", "message", "vertices", "faces", "weights", "criterion", "tolerance",
         "max_imbalance", "imbalance_percentile_99", "unbalanced_vertices", "vertices_at_rounding_floor", "vertices_below_precision", "regularized_tip_vertices",
         "max_stationarity", "unstationary_vertices", "residual", "max_tangential_residual", "flipped_faces", "total_signed_area", "bijective",
-        "initial_flipped_faces", "uniform_initial_guess_fallback", "admissible_weights", "raised_weights", "clamped_weights",
+        "initial_flipped_faces", "uniform_initial_guess_fallback", "multilevel_fallback", "admissible_weights", "raised_weights", "clamped_weights",
         "rejected_moves", "separator_size",
         "cut_loop_length", "levels", "stages", "written", "seconds"}
 good = json.load(open(sys.argv[1]))

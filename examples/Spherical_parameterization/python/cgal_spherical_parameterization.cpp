@@ -127,6 +127,7 @@ py::dict result_dict(const SP::Result& r, const std::string& weights, const std:
   d["vertices_at_rounding_floor"] = r.vertices_at_rounding_floor;
   d["vertices_below_precision"] = r.vertices_below_precision;
   d["regularized_tip_vertices"] = r.regularized_tip_vertices;
+  d["multilevel_fallback"] = r.multilevel_fallback;
   d["residual"] = number(r.residual);
   d["max_tangential_residual"] = number(r.max_tangential_residual);
   d["flipped_faces"] = r.flipped_faces;

@@ -83,6 +83,9 @@ struct Result
   /// not tested. Every other vertex keeps its own equation and is tested. 0 on most meshes (the manual's
   /// "Converged" section).
   std::size_t regularized_tip_vertices = 0;
+  /// The map comes from the multilevel start tried after the two-disk path ended unconverged on a mesh below the
+  /// multilevel size (the manual's Method section); `levels` then describes it.
+  bool multilevel_fallback = false;
   /// Vertices whose imbalance exceeds the tolerance (or their rounding floor, where it is larger), or whose floor
   /// exceeds 1/2 (vertices below double precision excepted); 0 when balanced.
   std::size_t unbalanced_vertices = 0;

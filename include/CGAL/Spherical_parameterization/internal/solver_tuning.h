@@ -26,6 +26,9 @@ struct Solver_tuning
   // Of 1/2, 1/4, 1/8 of the vertices and 3, 10 smoothing sweeps, 1/4 with 10 sweeps was the most even on bunny00 and
   // armadillo Loop x2 (1/2 took 52 steps on bunny00 once); 30 or 60 sweeps did not lower the Newton steps.
   double multilevel_coarsening_ratio = 0.25;
+  // Smaller meshes where the two-disk path ends unconverged try the multilevel start as well (Sphere_mapper); below
+  // this size its coarser level would be a handful of vertices.
+  std::size_t multilevel_fallback_min_vertices = 200;
   std::size_t multilevel_smoothing_sweeps = 10;
 
   // --- Newton's linear systems (mobius_newton.h) ---
