@@ -73,11 +73,16 @@ endforeach()
 foreach(mesh ${SP_CGAL_CORPUS})
   sp_add_corpus_case(${SPHERICAL_PARAMETERIZATION_CGAL_DATA}/${mesh}.off uniform_loop1)
 endforeach()
+# uniform_loop2: two subdivisions of the small CAD parts whose refined maps were hard (oblong's level of 1,680 vertices
+# failed from its two disks before coarser levels got the multilevel start as a fallback).
+foreach(mesh oblong u part)
+  sp_add_corpus_case(${SPHERICAL_PARAMETERIZATION_CGAL_DATA}/${mesh}.off uniform_loop2)
+endforeach()
 
 # Marching-tetrahedra surfaces of a ball with many thin arms (make_thin_arms_surface.py SEED ARMS RESOLUTION), made
 # once at configure time in the build folder, uniform weights: meshes of a kind none of the files above is, whose
 # balanced maps squeeze the arms' tips below double precision.
-set(SP_THIN_ARMS 1_12_70 3_12_70 4_12_70 11_16_80 16_16_80 14_20_90 17_20_90 18_24_100)
+set(SP_THIN_ARMS 1_12_70 3_12_70 4_12_70 11_16_80 16_16_80 14_20_90 17_20_90 18_24_100 5_20_90)
 set(SP_THIN_ARMS_DIR ${CMAKE_CURRENT_BINARY_DIR}/thin_arms)
 file(MAKE_DIRECTORY ${SP_THIN_ARMS_DIR})
 set_property(DIRECTORY APPEND PROPERTY CMAKE_CONFIGURE_DEPENDS ${CMAKE_CURRENT_SOURCE_DIR}/make_thin_arms_surface.py)

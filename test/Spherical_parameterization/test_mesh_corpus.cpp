@@ -6,7 +6,7 @@
 // Author(s)     : CGAL Spherical Parameterization contributors
 
 // The whole pipeline on one real mesh, as a ctest case:
-//   test_mesh_corpus MESH WEIGHTS[_loop1][_morton_order] [--known-failure REASON]
+//   test_mesh_corpus MESH WEIGHTS[_loop1|_loop2][_morton_order] [--known-failure REASON]
 // Passes when the status is OK, every vertex is balanced (imbalance e_i <= 1e-6, or its rounding floor; recomputed
 // here for uniform weights), no face is flipped under the exact predicate and the spherical areas
 // add up to 4 pi, all re-checked here with the public certificate, independently of the returned figures.
@@ -147,7 +147,7 @@ int main(int argc, char** argv)
     return expect_code(argv[2], argv[3]);
   if(argc < 3)
   {
-    std::cerr << "usage: test_mesh_corpus MESH uniform|cotangent|mean_value[_admissible][_loop1][_morton_order] "
+    std::cerr << "usage: test_mesh_corpus MESH uniform|cotangent|mean_value[_admissible][_loop1|_loop2][_morton_order] "
                  "[--known-failure REASON]\n";
     return 2;
   }
@@ -165,9 +165,9 @@ int main(int argc, char** argv)
   };
   std::string base = weights;
   const bool morton_order = strip(base, "_morton_order");
-  // "_loop1": the mesh refined by one Loop subdivision first (CGAL's), a mesh none of the files is: refining changes
+  // "_loop1", "_loop2": the mesh refined by one or two Loop subdivisions first (CGAL's), a mesh none of the files is: refining changes
   // the balanced map's scales and the solver's path.
-  const bool loop_refined = strip(base, "_loop1");
+  const int loop_rounds = strip(base, "_loop1") ? 1 : strip(base, "_loop2") ? 2 : 0;
   const bool admissible = strip(base, "_admissible");
   SP::Weighting weighting = SP::Weighting::UNIFORM;
   if(base == "cotangent")
@@ -186,8 +186,8 @@ int main(int argc, char** argv)
     std::cerr << "FAIL: cannot read " << path << "\n";
     return 1;
   }
-  if(loop_refined)
-    CGAL::Subdivision_method_3::Loop_subdivision(mesh, CGAL::parameters::number_of_iterations(1));
+  if(loop_rounds > 0)
+    CGAL::Subdivision_method_3::Loop_subdivision(mesh, CGAL::parameters::number_of_iterations(loop_rounds));
   if(morton_order)
   {
     SP::internal::Mesh_arrays arrays =

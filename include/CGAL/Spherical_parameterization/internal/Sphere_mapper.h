@@ -178,11 +178,11 @@ private:
   // unconverged, the multilevel start is tried too: its coarser level carries the global shape that Newton's steps from
   // the two-disk guess could not find (CGAL's u.off and part.off refined by one Loop subdivision: NOT_CONVERGED at max
   // imbalance 0.37 and 0.09 from the two disks, OK in 0.04 and 0.06 s from their levels of 84 and 173 vertices).
+  // Coarser levels too: oblong.off refined twice failed on its level of 1,680 vertices, and converges through it.
   bool multilevel_fallback_applies(const std::vector<Vector3>& x) const
   {
-    if(!m_options.multilevel || m_options.coarse_level || m_cancelled || m_no_balanced_solution
-       || m_options.weighting != Weighting::UNIFORM || !m_system.symmetric
-       || m_options.nonlinear_solver != Nonlinear_solver::GLOBAL_NEWTON
+    if(!m_options.multilevel || m_cancelled || m_no_balanced_solution || m_options.weighting != Weighting::UNIFORM
+       || !m_system.symmetric || m_options.nonlinear_solver != Nonlinear_solver::GLOBAL_NEWTON
        || m_system.number_of_vertices >= m_options.iterations.tuning.multilevel_min_vertices
        || m_system.number_of_vertices < m_options.iterations.tuning.multilevel_fallback_min_vertices
        || m_options.iterations.max_newton_sweeps == 0 || m_newton.out_of_time
