@@ -78,8 +78,9 @@ struct Result
   /// them like every other vertex.
   std::size_t vertices_below_precision = 0;
   /// Vertices of arm tips whose balanced positions lie below double precision, so that the balanced map rounded to
-  /// double has non-positive triangles there: they were solved with weights weakened along the arm's rings, which
-  /// keeps the tip orders of magnitude above rounding and bijective, and are counted in `vertices_below_precision`,
+  /// double has non-positive triangles there: they were solved with weights that fall by a constant factor per ring
+  /// towards the tip, which keeps it orders of magnitude above rounding and bijective, and are counted in
+  /// `vertices_below_precision`,
   /// not tested. Every other vertex keeps its own equation and is tested. 0 on most meshes (the manual's
   /// "Converged" section).
   std::size_t regularized_tip_vertices = 0;
