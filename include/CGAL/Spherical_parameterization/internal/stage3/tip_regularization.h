@@ -63,7 +63,8 @@ inline double mean_chord(const Sphere_system& system, const std::vector<Vector3>
 }
 
 // The tips to regularize on a balanced map `x` with non-positive faces: a flag per vertex, or an empty vector when
-// some non-positive face has no vertex below `tip_scale` (then the folds are not a matter of precision).
+// some non-positive face has no vertex below `tip_scale` (then the folds are not a matter of precision) or a tip
+// vertex has a weight that is not positive.
 inline std::vector<char> unresolvable_tips(const Sphere_system& system, const std::vector<Vector3>& x, double tip_scale)
 {
   const std::size_t n = system.number_of_vertices;
@@ -108,6 +109,13 @@ inline std::vector<char> unresolvable_tips(const Sphere_system& system, const st
       }
     }
   }
+  // The regularized map of a tip is a convex-combination map only when its weights are positive (cotangent weights
+  // may not be): elsewhere the folds are left to the other fallbacks.
+  for(std::size_t i = 0; i < n; ++i)
+    if(tip[i])
+      for(std::size_t k = system.offsets[i]; k < system.offsets[i + 1]; ++k)
+        if(!(system.weights[k] > 0.))
+          return {};
   return tip;
 }
 
