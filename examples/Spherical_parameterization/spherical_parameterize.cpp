@@ -18,6 +18,7 @@
 #include <CGAL/Spherical_parameterization/IO/read_polygon_soup.h>
 #include <CGAL/Spherical_parameterization/certify_sphere_map.h>
 #include <CGAL/Spherical_parameterization/check_input.h>
+#include <CGAL/Spherical_parameterization/measure_spherical_distortion.h>
 #include <CGAL/Spherical_parameterization/spherical_parameterize.h>
 
 #include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
@@ -155,7 +156,11 @@ void print_usage(std::ostream& out)
          "  vertices_below_precision (neighbourhoods within about 28 ulps: counted, not tested),\n"
          "  regularized_tip_vertices (arm tips that double cannot hold balanced, among the previous),\n"
          "  max_stationarity and unstationary_vertices (non-symmetric weights, else null), residual (Res),\n"
-         "  max_tangential_residual, flipped_faces, total_signed_area, bijective, initial_flipped_faces,\n"
+         "  max_tangential_residual, flipped_faces, total_signed_area, bijective,\n"
+         "  distortion.{mean_angle_error_degrees,max_angle_error_degrees,log_area_ratio_stddev} (each corner's\n"
+         "  angle in the mesh against that of the straight triangle between the mapped points, and the spread\n"
+         "  of log(relative sphere area / relative mesh area); null when no map was computed),\n"
+         "  initial_flipped_faces,\n"
          "  uniform_initial_guess_fallback, multilevel_fallback, admissible_weights, raised_weights,\n"
          "  clamped_weights, rejected_moves,\n"
          "  separator_size, cut_loop_length, levels (the multilevel start, coarsest first, [] when not used:\n"
@@ -473,6 +478,9 @@ struct Run_figures
   double tolerance = 1e-6;
   double read_seconds = 0., map_seconds = 0., write_seconds = 0., total_seconds = 0.;
   bool skipped = false; // the output was already a certified answer to the same request, and was kept
+  // The map's shape against the mesh's (measure_spherical_distortion()), when a map was computed.
+  bool has_distortion = false;
+  SP::Spherical_distortion distortion;
 };
 
 // The multilevel start's levels, coarsest first: [{"vertices": .., "newton_steps": .., ...}, ...].
@@ -525,6 +533,12 @@ void print_json(std::ostream& out, const SP::Result& r, const Run_figures& run)
       {"flipped_faces", json_count(r.flipped_faces, certified)},
       {"total_signed_area", json_number(r.total_signed_area, certified)},
       {"bijective", boolean(r.bijective)},
+      {"distortion", run.has_distortion
+                         ? "{\"mean_angle_error_degrees\": " + json_number(run.distortion.mean_angle_error_degrees)
+                               + ", \"max_angle_error_degrees\": " + json_number(run.distortion.max_angle_error_degrees)
+                               + ", \"log_area_ratio_stddev\": " + json_number(run.distortion.log_area_ratio_stddev)
+                               + "}"
+                         : std::string("null")},
       {"initial_flipped_faces", json_count(r.initial_flipped_faces, computed)},
       {"uniform_initial_guess_fallback", boolean(r.uniform_initial_guess_fallback)},
       {"multilevel_fallback", boolean(r.multilevel_fallback)},
@@ -589,7 +603,12 @@ void print_text(std::ostream& out, const SP::Result& r, const Run_figures& run)
   out << "Res (paper):     " << r.residual << "\n"
       << "max tangential:  " << r.max_tangential_residual << "\n"
       << "flipped faces:   " << r.flipped_faces << " (exact orientation test)\n"
-      << std::setprecision(12) << "total area:      " << r.total_signed_area << " (4 pi = 12.5663706144)\n"
+      << std::setprecision(12) << "total area:      " << r.total_signed_area << " (4 pi = 12.5663706144)\n";
+  if(run.has_distortion)
+    out << std::setprecision(4) << "distortion:      mean angle error " << run.distortion.mean_angle_error_degrees
+        << " degrees (max " << run.distortion.max_angle_error_degrees << "), std of log area ratios "
+        << run.distortion.log_area_ratio_stddev << "\n";
+  out
       << std::setprecision(3) << "stage 1:         initial guess, " << r.initial_guess.seconds << " s, Res "
       << r.initial_guess.residual << ", " << plural(r.initial_flipped_faces, "non-positive face");
   if(r.levels.empty())
@@ -1489,6 +1508,9 @@ int main(int argc, char** argv)
   const bool has_map = result.number_of_vertices > 0 && result.residual >= 0.;
   if(has_map)
   {
+    // What users compare tools by: the corners' angle error and the spread of the area ratios.
+    run.distortion = SP::measure_spherical_distortion(mesh, sphere_map);
+    run.has_distortion = true;
     progress.phase("writing " + output);
     const Clock::time_point write_start = Clock::now();
     std::vector<Point> sphere(points.size());

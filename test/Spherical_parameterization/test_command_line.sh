@@ -203,12 +203,12 @@ python3 -c "import json,sys; o=json.load(open(sys.argv[1])); assert o['admissibl
 # --json on an invalid mesh: the same keys, the error status, no output, figures null.
 "$tool" "$shared/bad_input/genus1_rocker-arm.off" --json -o "$scratch/bad.off" > "$scratch/bad.json" 2> /dev/null
 check "--json on an invalid mesh" 2 $?
-python3 - "$scratch/good.json" "$scratch/bad.json" "$scratch/json.off" <<'JSON_CHECK' || failures=$((failures + 1))
+python3 - "$scratch/good.json" "$scratch/bad.json" "$scratch/json.off" "$bunny" <<'JSON_CHECK' || failures=$((failures + 1))
 import json, math, os, sys
 keys = {"format", "input", "output", "status", "success", "skipped", "message", "vertices", "faces", "weights", "criterion", "tolerance",
         "max_imbalance", "imbalance_percentile_99", "unbalanced_vertices", "vertices_at_rounding_floor", "vertices_below_precision", "regularized_tip_vertices",
         "max_stationarity", "unstationary_vertices", "residual", "max_tangential_residual", "flipped_faces", "total_signed_area", "bijective",
-        "initial_flipped_faces", "uniform_initial_guess_fallback", "multilevel_fallback", "admissible_weights", "raised_weights", "clamped_weights",
+        "distortion", "initial_flipped_faces", "uniform_initial_guess_fallback", "multilevel_fallback", "admissible_weights", "raised_weights", "clamped_weights",
         "rejected_moves", "separator_size",
         "cut_loop_length", "levels", "stages", "written", "seconds"}
 good = json.load(open(sys.argv[1]))
@@ -227,6 +227,36 @@ assert 0 <= good["max_imbalance"] and good["unbalanced_vertices"] == 0, good
 assert good["max_stationarity"] is None and good["unstationary_vertices"] is None, good  # uniform weights: symmetric
 assert good["imbalance_percentile_99"] <= good["max_imbalance"], good
 assert abs(good["total_signed_area"] - 4 * math.pi) < 1e-6, good
+d = good["distortion"]
+assert set(d) == {"mean_angle_error_degrees", "max_angle_error_degrees", "log_area_ratio_stddev"}, d
+assert 0 < d["mean_angle_error_degrees"] <= d["max_angle_error_degrees"] < 180 and d["log_area_ratio_stddev"] > 0, d
+assert bad["distortion"] is None, bad
+# The angle error again, independently, from the input and the written output.
+def read_off(path):
+    words = [w for line in open(path) for w in line.split("#")[0].split()]
+    assert words[0] == "OFF"
+    nv, nf = int(words[1]), int(words[2])
+    numbers = words[4:]
+    points = [tuple(map(float, numbers[3 * i:3 * i + 3])) for i in range(nv)]
+    rest = numbers[3 * nv:]
+    faces = [tuple(map(int, rest[4 * k + 1:4 * k + 4])) for k in range(nf)]
+    return points, faces
+def corner_angles(p, f):
+    out = []
+    for t in f:
+        for k in range(3):
+            a, b, c = p[t[k]], p[t[(k + 1) % 3]], p[t[(k + 2) % 3]]
+            u = [b[i] - a[i] for i in range(3)]
+            v = [c[i] - a[i] for i in range(3)]
+            cross = (u[1] * v[2] - u[2] * v[1], u[2] * v[0] - u[0] * v[2], u[0] * v[1] - u[1] * v[0])
+            out.append(math.atan2(math.sqrt(sum(x * x for x in cross)), sum(u[i] * v[i] for i in range(3))))
+    return out
+mesh_points, mesh_faces = read_off(sys.argv[4])
+sphere_points, sphere_faces = read_off(sys.argv[3])
+assert sphere_faces == mesh_faces
+errors = [abs(x - y) * 180 / math.pi for x, y in zip(corner_angles(mesh_points, mesh_faces), corner_angles(sphere_points, mesh_faces))]
+assert abs(sum(errors) / len(errors) - d["mean_angle_error_degrees"]) < 1e-6 * d["mean_angle_error_degrees"], (sum(errors) / len(errors), d)
+assert abs(max(errors) - d["max_angle_error_degrees"]) < 1e-6 * d["max_angle_error_degrees"], (max(errors), d)
 assert good["output"] == sys.argv[3] and os.path.exists(good["output"]), good
 assert abs(good["stages"]["newton"]["residual"] - good["residual"]) <= 1e-9 * good["residual"], good
 assert good["seconds"]["total"] >= good["seconds"]["map"] > 0, good
