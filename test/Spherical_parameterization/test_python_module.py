@@ -44,6 +44,7 @@ Y[[0, 100]] = Y[[100, 0]]
 check(not sp.certify(Y, F)["bijective"], "certify rejects a map with two vertices swapped")
 distortion = sp.measure_distortion(V, X, F)
 check(0 < distortion["mean_angle_error_degrees"] < 30 and distortion["log_area_ratio_stddev"] > 0, "distortion: %s" % distortion)
+check(info["distortion"] == distortion, "map_to_sphere's distortion is measure_distortion's: %s" % info["distortion"])
 X2, info2 = sp.map_to_sphere(V, F, weights="cotangent")
 check(info2["weights"] == "cotangent" and info2["status"] in ("OK", "NOT_CONVERGED"), "cotangent weights: %s" % info2["status"])
 # FreeSurfer surfaces through the same reader.

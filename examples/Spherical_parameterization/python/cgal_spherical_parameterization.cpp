@@ -239,7 +239,15 @@ py::tuple map_to_sphere(const Vertices& V, const Faces& F, const std::string& we
     x(static_cast<py::ssize_t>(i), 1) = sphere_points[i].y();
     x(static_cast<py::ssize_t>(i), 2) = sphere_points[i].z();
   }
-  return py::make_tuple(X, result_dict(result, weights, criterion, tolerance));
+  py::dict info = result_dict(result, weights, criterion, tolerance);
+  // The map's shape against the mesh's, as in the command line's JSON.
+  const SP::Spherical_distortion d = SP::measure_spherical_distortion(mesh, sphere);
+  py::dict distortion;
+  distortion["mean_angle_error_degrees"] = d.mean_angle_error_degrees;
+  distortion["max_angle_error_degrees"] = d.max_angle_error_degrees;
+  distortion["log_area_ratio_stddev"] = d.log_area_ratio_stddev;
+  info["distortion"] = distortion;
+  return py::make_tuple(X, info);
 }
 
 py::dict certify(const Vertices& X, const Faces& F)
@@ -335,10 +343,10 @@ PYBIND11_MODULE(cgal_spherical_parameterization, m)
       py::arg("admissible_weights") = false, py::arg("progress") = py::none(),
       "Maps the mesh (V: (n,3) float64, F: (m,3) int) onto the unit sphere. Returns (X, info): X (n,3) float64 on the\n"
       "unit sphere in V's vertex order, info a dict with the command line's JSON figures ('status', 'success',\n"
-      "'max_imbalance', 'flipped_faces', 'bijective', 'stages', ...). A map that is not converged or not bijective is\n"
-      "returned with its status; invalid input raises ValueError('CODE: message'). progress(stage, iteration,\n"
-      "residual, non_positive_faces, seconds) is called at most ten times a second; returning False stops the run.\n"
-      "Ctrl-C raises KeyboardInterrupt.");
+      "'max_imbalance', 'flipped_faces', 'bijective', 'distortion', 'stages', ...). A map that is not converged or\n"
+      "not bijective is returned with its status; invalid input raises ValueError('CODE: message'). progress(stage,\n"
+      "iteration, residual, non_positive_faces, seconds) is called at most ten times a second; returning False\n"
+      "stops the run. Ctrl-C raises KeyboardInterrupt.");
   m.def("certify", &certify, py::arg("X"), py::arg("F"),
         "Certifies a map onto the sphere with exact predicates: dict(bijective, flipped_faces, total_signed_area, "
         "faces).");
