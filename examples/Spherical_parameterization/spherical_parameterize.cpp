@@ -1508,9 +1508,13 @@ int main(int argc, char** argv)
   const bool has_map = result.number_of_vertices > 0 && result.residual >= 0.;
   if(has_map)
   {
-    // What users compare tools by: the corners' angle error and the spread of the area ratios.
-    run.distortion = SP::measure_spherical_distortion(mesh, sphere_map);
-    run.has_distortion = true;
+    // What users compare tools by: the corners' angle error and the spread of the area ratios. Only where it is
+    // printed: it costs about 3% of the whole process on 832k faces.
+    if(settings.json || !settings.quiet)
+    {
+      run.distortion = SP::measure_spherical_distortion(mesh, sphere_map);
+      run.has_distortion = true;
+    }
     progress.phase("writing " + output);
     const Clock::time_point write_start = Clock::now();
     std::vector<Point> sphere(points.size());
