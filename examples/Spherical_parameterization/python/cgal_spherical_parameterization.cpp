@@ -214,6 +214,7 @@ py::tuple map_to_sphere(const Vertices& V, const Faces& F, const std::string& we
   std::vector<Point> sphere_points(num_vertices(mesh));
   auto sphere = boost::make_iterator_property_map(sphere_points.begin(), get(CGAL::vertex_index, mesh));
   SP::Result result;
+  SP::Spherical_distortion d;
   {
     py::gil_scoped_release no_gil;
     result = SP::spherical_parameterize(
@@ -224,6 +225,9 @@ py::tuple map_to_sphere(const Vertices& V, const Faces& F, const std::string& we
             SP::parameters::progress_callback(report),
             SP::parameters::convergence_test(criterion == "paper" ? SP::Convergence_test::PAPER_RESIDUAL
                                                                   : SP::Convergence_test::IMBALANCE)));
+    // The map's shape against the mesh's, as in the command line's JSON.
+    if(result.residual >= 0.)
+      d = SP::measure_spherical_distortion(mesh, sphere);
   }
   if(interrupted)
     throw py::error_already_set(); // KeyboardInterrupt, set by PyErr_CheckSignals()
@@ -240,8 +244,6 @@ py::tuple map_to_sphere(const Vertices& V, const Faces& F, const std::string& we
     x(static_cast<py::ssize_t>(i), 2) = sphere_points[i].z();
   }
   py::dict info = result_dict(result, weights, criterion, tolerance);
-  // The map's shape against the mesh's, as in the command line's JSON.
-  const SP::Spherical_distortion d = SP::measure_spherical_distortion(mesh, sphere);
   py::dict distortion;
   distortion["mean_angle_error_degrees"] = d.mean_angle_error_degrees;
   distortion["max_angle_error_degrees"] = d.max_angle_error_degrees;
