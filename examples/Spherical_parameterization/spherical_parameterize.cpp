@@ -609,8 +609,7 @@ void print_text(std::ostream& out, const SP::Result& r, const Run_figures& run)
     out << std::setprecision(4) << "distortion:      mean angle error " << run.distortion.mean_angle_error_degrees
         << " degrees (max " << run.distortion.max_angle_error_degrees << "), std of log area ratios "
         << run.distortion.log_area_ratio_stddev << "\n";
-  out
-      << std::setprecision(3) << "stage 1:         initial guess, " << r.initial_guess.seconds << " s, Res "
+  out << std::setprecision(3) << "stage 1:         initial guess, " << r.initial_guess.seconds << " s, Res "
       << r.initial_guess.residual << ", " << plural(r.initial_flipped_faces, "non-positive face");
   if(r.levels.empty())
     out << ", cut loop of " << r.cut_loop_length << " vertices"

@@ -147,8 +147,8 @@ int main(int argc, char** argv)
     return expect_code(argv[2], argv[3]);
   if(argc < 3)
   {
-    std::cerr << "usage: test_mesh_corpus MESH uniform|cotangent|mean_value[_admissible][_loop1|_loop2][_morton_order] "
-                 "[--known-failure REASON]\n";
+    std::cerr << "usage: test_mesh_corpus MESH "
+                 "uniform|cotangent|mean_value[_admissible][_loop1|_loop2][_morton_order] [--known-failure REASON]\n";
     return 2;
   }
   const std::string path = argv[1], weights = argv[2];
@@ -165,8 +165,8 @@ int main(int argc, char** argv)
   };
   std::string base = weights;
   const bool morton_order = strip(base, "_morton_order");
-  // "_loop1", "_loop2": the mesh refined by one or two Loop subdivisions first (CGAL's), a mesh none of the files is: refining changes
-  // the balanced map's scales and the solver's path.
+  // "_loop1", "_loop2": the mesh refined by one or two Loop subdivisions first (CGAL's), a mesh none of the files is:
+  // refining changes the balanced map's scales and the solver's path.
   const int loop_rounds = strip(base, "_loop1") ? 1 : strip(base, "_loop2") ? 2 : 0;
   const bool admissible = strip(base, "_admissible");
   SP::Weighting weighting = SP::Weighting::UNIFORM;

@@ -80,9 +80,8 @@ struct Result
   /// Vertices of arm tips whose balanced positions lie below double precision, so that the balanced map rounded to
   /// double has non-positive triangles there: they were solved with weights that fall by a constant factor per ring
   /// towards the tip, which keeps it orders of magnitude above rounding and bijective, and are counted in
-  /// `vertices_below_precision`,
-  /// not tested. Every other vertex keeps its own equation and is tested. 0 on most meshes (the manual's
-  /// "Converged" section).
+  /// `vertices_below_precision`, not tested. Every other vertex keeps its own equation and is tested. 0 on most
+  /// meshes (the manual's "Converged" section).
   std::size_t regularized_tip_vertices = 0;
   /// The map comes from the multilevel start tried after the two-disk path ended unconverged on a mesh below the
   /// multilevel size (the manual's Method section); `levels` then describes it.
