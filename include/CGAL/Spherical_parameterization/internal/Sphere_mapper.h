@@ -141,7 +141,9 @@ public:
     m_result.number_of_vertices = m_system.number_of_vertices;
     m_result.number_of_faces = m_system.triangles.size();
     m_iteration_options = m_options.iterations;
-    if(multilevel_applies() && multilevel_start(x))
+    if(multilevel_applies())
+      m_multilevel_tried = true;
+    if(m_multilevel_tried && multilevel_start(x))
     {
       // Stage 1 is everything before this mesh's smoothing and Newton steps (the coarser levels, solved, and the map
       // carried back); stage 2 the smoothing.
@@ -166,12 +168,18 @@ public:
   }
 
 private:
+  // A coarser level of the multilevel start goes through its own coarser level first down to
+  // multilevel_fallback_min_vertices, not only from multilevel_min_vertices on: its two-disk guess is the slower
+  // start there (CGAL's man.off refined once: its levels of 17,493 and 4,373 vertices spent 3.4 s of 6.8 on their two
+  // disks before their own coarser levels solved them; 3.7 s in all through the levels).
   bool multilevel_applies() const
   {
+    const Solver_tuning& tuning = m_options.iterations.tuning;
+    const std::size_t min_vertices =
+        m_options.coarse_level ? tuning.multilevel_fallback_min_vertices : tuning.multilevel_min_vertices;
     return m_options.multilevel && m_options.weighting == Weighting::UNIFORM && m_system.symmetric
            && m_options.nonlinear_solver == Nonlinear_solver::GLOBAL_NEWTON
-           && m_system.number_of_vertices >= m_options.iterations.tuning.multilevel_min_vertices
-           && m_options.iterations.max_newton_sweeps > 0;
+           && m_system.number_of_vertices >= min_vertices && m_options.iterations.max_newton_sweeps > 0;
   }
 
   // Below multilevel_min_vertices the two-disk path comes first (faster there on most meshes); where it ends
@@ -181,7 +189,8 @@ private:
   // Coarser levels too: oblong.off refined twice failed on its level of 1,680 vertices, and converges through it.
   bool multilevel_fallback_applies(const std::vector<Vector3>& x) const
   {
-    if(!m_options.multilevel || m_cancelled || m_no_balanced_solution || m_options.weighting != Weighting::UNIFORM
+    if(!m_options.multilevel || m_multilevel_tried || m_cancelled || m_no_balanced_solution
+       || m_options.weighting != Weighting::UNIFORM
        || !m_system.symmetric || m_options.nonlinear_solver != Nonlinear_solver::GLOBAL_NEWTON
        || m_system.number_of_vertices >= m_options.iterations.tuning.multilevel_min_vertices
        || m_system.number_of_vertices < m_options.iterations.tuning.multilevel_fallback_min_vertices
@@ -224,10 +233,11 @@ private:
     m_cancelled = m_cancelled || m_newton.cancelled;
   }
 
-  // The multilevel start: the mesh collapsed to about `Solver_tuning::multilevel_coarsening_ratio` of its vertices, that mesh
-  // solved by the whole pipeline (itself multilevel while it is large enough), its map carried back (prolong()),
-  // smoothed by a few Gauss-Seidel sweeps (the vertices carried back sit where their ring was positive, not where
-  // they balance), then Newton's full steps on this mesh, the boosts solved as outer unknowns (Boost_aim::ROOT).
+  // The multilevel start: the mesh collapsed to about `Solver_tuning::multilevel_coarsening_ratio` of its vertices,
+  // that mesh solved by the whole pipeline (itself multilevel while it is large enough), its map carried back
+  // (prolong()), smoothed by a few Gauss-Seidel sweeps (the vertices carried back sit where their ring was positive,
+  // not where they balance), then Newton's full steps on this mesh, the boosts solved as outer unknowns
+  // (Boost_aim::ROOT), and where they fail from a bijective map, the steps that keep it bijective.
   // From the two-disk guess the number of Newton steps grows with the mesh; from the level below it stays a few
   // (the manual's Method and Performance sections have the counts).
   // Returns true when this mesh's map converged (or the time or a cancel stopped it); otherwise `x` is unspecified
@@ -250,6 +260,8 @@ private:
     std::vector<Vector3> coarse_x;
     Pipeline_options coarse_options = m_options;
     coarse_options.coarse_level = true;
+    coarse_options.iterations.tolerance =
+        std::min(coarse_options.iterations.tolerance, m_options.iterations.tuning.multilevel_coarse_tolerance);
     const Result coarse = Sphere_mapper(coarsening.coarse, coarse_system, coarse_options, m_solver).map(coarse_x);
     if(coarse.status == Error_code::CANCELLED && coarse_x.size() == coarse_system.number_of_vertices)
     {
@@ -285,7 +297,25 @@ private:
     m_result.gauss_seidel.seconds = iterations_clock.time();
     m_result.initial_guess.residual = smoothed.residual;
     // The map carried back is close to the solution: the boost equations are solved as equations (Boost_aim).
+    const std::vector<Vector3> smoothed_map = state.positions();
+    const bool smoothed_map_positive = state.invalid_faces() == 0;
     m_newton = full_newton_steps(state, level_options, iterations_clock, Boost_aim::ROOT);
+    if(!m_newton.converged && !m_newton.cancelled && !m_newton.out_of_time && smoothed_map_positive)
+    {
+      // The full steps folded their way astray, but the map carried back was bijective: from it, the steps that keep
+      // every triangle positive (CGAL's man.off refined once: its level of 4,373 vertices converges in 7 such steps,
+      // where the full steps ended at max imbalance 0.94 and the finer levels fell back to their two disks).
+      state.assign(smoothed_map);
+      Iteration_options remaining = level_options;
+      remaining.max_newton_sweeps =
+          level_options.max_newton_sweeps > m_newton.sweeps ? level_options.max_newton_sweeps - m_newton.sweeps : 0;
+      Iteration_report bijective_steps =
+          mobius_newton(state, remaining, iterations_clock, nullptr, m_options.iterations.tuning.cautious_patience,
+                        false, Step_merit::IMBALANCE, Boost_aim::ROOT);
+      bijective_steps.sweeps += m_newton.sweeps;
+      bijective_steps.linear_iterations += m_newton.linear_iterations;
+      m_newton = bijective_steps;
+    }
     m_system.regularized_tips = m_newton.regularized_tips;
     m_cancelled = m_cancelled || m_newton.cancelled;
     m_multilevel_newton_seconds = iterations_clock.time();
@@ -583,6 +613,7 @@ private:
   Inscribability_check m_inscribability;
   Iteration_report m_newton;
   double m_multilevel_newton_seconds = 0.;
+  bool m_multilevel_tried = false; // the multilevel start came first (multilevel_applies): no fallback to it
 };
 
 } // namespace internal
