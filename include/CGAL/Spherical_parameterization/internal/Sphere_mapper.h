@@ -186,7 +186,7 @@ private:
   // unconverged, the multilevel start is tried too: its coarser level carries the global shape that Newton's steps from
   // the two-disk guess could not find (CGAL's u.off and part.off refined by one Loop subdivision: NOT_CONVERGED at max
   // imbalance 0.37 and 0.09 from the two disks, OK in 0.04 and 0.06 s from their levels of 84 and 173 vertices).
-  // Coarser levels too: oblong.off refined twice failed on its level of 1,680 vertices, and converges through it.
+  // Only for the mesh given: a coarser level from that size on has gone multilevel first (multilevel_applies).
   bool multilevel_fallback_applies(const std::vector<Vector3>& x) const
   {
     if(!m_options.multilevel || m_multilevel_tried || m_cancelled || m_no_balanced_solution
