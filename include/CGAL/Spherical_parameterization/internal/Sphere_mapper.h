@@ -242,15 +242,35 @@ private:
   // (the manual's Method and Performance sections have the counts).
   // Returns true when this mesh's map converged (or the time or a cancel stopped it); otherwise `x` is unspecified
   // and the caller starts again with the paper's stage 1.
-
+  // Where it fails on the mesh given (not for want of time; a coarser level is a mere start, see coarse_level), it is
+  // tried once more through levels of `Solver_tuning::multilevel_retry_coarsening_ratio` of the vertices (and so on
+  // down): a map carried back from a level closer in size is closer to this level's solution, so Newton's steps fold
+  // less (CGAL's camel.off refined twice: its finest level of 156,290 vertices stalls from its level of a quarter of
+  // them, and converges through levels of halves; u.off refined twice likewise).
   bool multilevel_start(std::vector<Vector3>& x)
+  {
+    const Solver_tuning& tuning = m_options.iterations.tuning;
+    if(multilevel_attempt(x, tuning.multilevel_coarsening_ratio))
+      return true;
+    const bool budget_left =
+        !(m_options.iterations.max_seconds >= 0. && m_options.call_clock.time() >= m_options.iterations.max_seconds);
+    if(m_options.coarse_level || m_cancelled || m_newton.out_of_time || !budget_left
+       || !(tuning.multilevel_retry_coarsening_ratio > tuning.multilevel_coarsening_ratio))
+      return false;
+    if(m_options.verbose)
+      std::cerr << "multilevel: " << m_system.number_of_vertices << " vertices tried again through levels of "
+                << tuning.multilevel_retry_coarsening_ratio << " of the vertices\n";
+    return multilevel_attempt(x, tuning.multilevel_retry_coarsening_ratio);
+  }
+
+  // One multilevel start through coarser levels of `ratio` times the vertices (the coarser levels keep that ratio).
+  bool multilevel_attempt(std::vector<Vector3>& x, double ratio)
   {
     CGAL::Real_timer clock;
     clock.start();
     const std::size_t n = m_system.number_of_vertices;
-    Coarsening coarsening = coarsen_mesh(
-        m_mesh.points, m_system.triangles,
-        static_cast<std::size_t>(m_options.iterations.tuning.multilevel_coarsening_ratio * static_cast<double>(n)));
+    Coarsening coarsening =
+        coarsen_mesh(m_mesh.points, m_system.triangles, static_cast<std::size_t>(ratio * static_cast<double>(n)));
     Sphere_system coarse_system =
         make_connectivity(std::move(coarsening.coarse.triangles), coarsening.coarse.points.size());
     std::string message;
@@ -260,6 +280,7 @@ private:
     std::vector<Vector3> coarse_x;
     Pipeline_options coarse_options = m_options;
     coarse_options.coarse_level = true;
+    coarse_options.iterations.tuning.multilevel_coarsening_ratio = ratio;
     coarse_options.iterations.tolerance =
         std::min(coarse_options.iterations.tolerance, m_options.iterations.tuning.multilevel_coarse_tolerance);
     const Result coarse = Sphere_mapper(coarsening.coarse, coarse_system, coarse_options, m_solver).map(coarse_x);
