@@ -156,6 +156,7 @@ public:
     else
     {
       m_result.levels.clear();
+      m_system.regularized_tips.clear(); // a failed multilevel start's tips belong to its map, not to this one
       if(!two_disk_start(x))
         return m_result;
       iterate(x);
@@ -268,6 +269,7 @@ private:
   {
     CGAL::Real_timer clock;
     clock.start();
+    m_system.regularized_tips.clear(); // those of an earlier attempt or path belong to its map (the fallback keeps them)
     const std::size_t n = m_system.number_of_vertices;
     Coarsening coarsening =
         coarsen_mesh(m_mesh.points, m_system.triangles, static_cast<std::size_t>(ratio * static_cast<double>(n)));

@@ -26,9 +26,10 @@ struct Solver_tuning
   // Of 1/2, 1/4, 1/8 of the vertices and 3, 10 smoothing sweeps, 1/4 with 10 sweeps was the most even on bunny00 and
   // armadillo Loop x2 (1/2 took 52 steps on bunny00 once); 30 or 60 sweeps did not lower the Newton steps.
   double multilevel_coarsening_ratio = 0.25;
-  // Where a level's multilevel start fails, it is tried once more through levels of this ratio (Sphere_mapper): as
-  // the first choice it cost bunny00 1.6 s instead of 1.05 s and man refined once 2.5 s instead of 1.9 s; as the
-  // retry, CGAL's camel and u refined twice converge (8.7 s and 2 s) where the ratio 1/4 failed.
+  // Where the multilevel start of the mesh given fails, it is tried once more through levels of this ratio
+  // (Sphere_mapper; coarser levels are not retried): as the first choice it cost bunny00 1.6 s instead of 1.05 s and
+  // man refined once 2.5 s instead of 1.9 s; as the retry, CGAL's camel and u refined twice converge (8.7 s and 2 s)
+  // where the ratio 1/4 failed.
   double multilevel_retry_coarsening_ratio = 0.5;
   // Smaller meshes where the two-disk path ends unconverged try the multilevel start as well (Sphere_mapper); below
   // this size its coarser level would be a handful of vertices. Also the size from which a coarser level of the
