@@ -112,6 +112,9 @@ void print_usage(std::ostream& out)
          "      --admissible-weights  solve with the closest symmetric positive weights instead (the mean of\n"
          "                        w_ij and w_ji, negative ones raised): the theory's case, for cotangent and\n"
          "                        mean_value weights that fail\n"
+         "      --hold-weights    cotangent weights whose balanced maps, followed from Tutte's weights, end\n"
+         "                        before them: hold the weights where that path ends and go on (the map is\n"
+         "                        balanced for the held weights: counted in the output; experimental)\n"
          "  -t, --tolerance T     stop when every imbalance e_i <= T (default 1e-6); mean_value weights, which\n"
          "                        have no exact solution: when their least-squares problem is stationary to T\n"
          "      --gauss-seidel-sweeps N  cap of stage 2, the paper's projected Gauss-Seidel (default: the\n"
@@ -155,6 +158,9 @@ void print_usage(std::ostream& out)
          "  imbalance_percentile_99, unbalanced_vertices, vertices_at_rounding_floor,\n"
          "  vertices_below_precision (neighbourhoods within about 28 ulps: counted, not tested),\n"
          "  regularized_tip_vertices (arm tips that double cannot hold balanced, among the previous),\n"
+         "  held_weight_vertices, held_weight_parameter and requested_weights_max_imbalance (weights other than\n"
+         "  Tutte's whose path from Tutte's ends: vertices whose weights were held, see the manual; 0, 1, null\n"
+         "  when none),\n"
          "  max_stationarity and unstationary_vertices (non-symmetric weights, else null), residual (Res),\n"
          "  max_tangential_residual, flipped_faces, total_signed_area, bijective,\n"
          "  distortion.{mean_angle_error_degrees,max_angle_error_degrees,log_area_ratio_stddev} (each corner's\n"
@@ -529,6 +535,10 @@ void print_json(std::ostream& out, const SP::Result& r, const Run_figures& run)
       {"vertices_at_rounding_floor", json_count(r.vertices_at_rounding_floor, computed)},
       {"vertices_below_precision", json_count(r.vertices_below_precision, computed)},
       {"regularized_tip_vertices", json_count(r.regularized_tip_vertices, computed)},
+      {"held_weight_vertices", json_count(r.held_weight_vertices, computed)},
+      {"held_weight_parameter", json_number(r.held_weight_parameter, computed)},
+      {"requested_weights_max_imbalance",
+       json_number(r.requested_weights_max_imbalance, computed && r.requested_weights_max_imbalance >= 0.)},
       {"residual", json_number(r.residual, computed)},
       {"max_tangential_residual", json_number(r.max_tangential_residual, computed)},
       {"flipped_faces", json_count(r.flipped_faces, certified)},
@@ -595,7 +605,14 @@ void print_text(std::ostream& out, const SP::Result& r, const Run_figures& run)
                                                       : std::string())
                     + ")"
               : std::string())
-      << "; " << run.weights << " weights, stopping on " << run.criterion << ")\n"
+      << "; " << run.weights << " weights, stopping on " << run.criterion << ")\n";
+  if(r.held_weight_vertices > 0)
+    out << "held weights:    " << r.held_weight_vertices << " of the " << r.number_of_vertices
+        << " vertices keep the weights blended with Tutte's at s >= " << r.held_weight_parameter
+        << " (the balanced maps from Tutte's weights end before these; the imbalances above are under the held "
+           "weights; under the weights requested the largest is "
+        << r.requested_weights_max_imbalance << ")\n";
+  out
       << (r.max_stationarity >= 0. ? "stationarity:    " : "");
   if(r.max_stationarity >= 0.)
     out << r.max_stationarity << " (max; " << r.unstationary_vertices
@@ -712,6 +729,7 @@ const Option options[] = {
     {"", "--start", "multilevel or two_disks"},
     {"", "--verbose", nullptr},
     {"", "--admissible-weights", nullptr},
+    {"", "--hold-weights", nullptr},
     {"-q", "--quiet", nullptr},
     {"", "--json", nullptr},
     {"-h", "--help", nullptr},
@@ -781,6 +799,7 @@ struct Settings
   long gauss_seidel_sweeps = -1; // -1: the library's default
   int seed = 0;
   bool quiet = false, json = false, backtracking = true, sparse_lu = false, admissible = false, float64 = false;
+  bool hold = false; // --hold-weights
   bool overwrite = false; // map again even when the output is already a certified answer to the same request
   bool multilevel = true, verbose = false;
   double radius = 1.;
@@ -916,6 +935,8 @@ Settings parse_arguments(int argc, char** argv)
       settings.overwrite = true;
     else if(canonical == "--admissible-weights")
       settings.admissible = true;
+    else if(canonical == "--hold-weights")
+      settings.hold = true;
     else if(canonical == "--quiet")
       settings.quiet = true;
     else if(canonical == "--json")
@@ -1068,6 +1089,7 @@ struct Run_stamp
 {
   std::string status, weights, criterion, precision, input;
   bool admissible = false;
+  bool hold = false; // --hold-weights (absent from the stamps written before it: no)
   double tolerance = 0., radius = 1.;
 };
 
@@ -1119,7 +1141,8 @@ std::string format_stamp(const Run_stamp& stamp)
 {
   std::ostringstream line;
   line << stamp_tag << " status=" << stamp.status << " weights=" << stamp.weights
-       << " admissible=" << (stamp.admissible ? "yes" : "no") << " criterion=" << stamp.criterion
+       << " admissible=" << (stamp.admissible ? "yes" : "no") << " hold=" << (stamp.hold ? "yes" : "no")
+       << " criterion=" << stamp.criterion
        << " tolerance=" << round_trip(stamp.tolerance) << " precision=" << stamp.precision
        << " radius=" << round_trip(stamp.radius) << " input=" << stamp.input;
   return line.str();
@@ -1153,6 +1176,11 @@ bool parse_stamp(const std::string& text, Run_stamp& stamp)
       stamp.input = value;
     else if(key == "admissible")
       stamp.admissible = value == "yes";
+    else if(key == "hold")
+    {
+      stamp.hold = value == "yes";
+      continue; // optional: stamps written before --hold-weights existed lack it
+    }
     else if(key == "tolerance")
       stamp.tolerance = std::strtod(value.c_str(), &end);
     else if(key == "radius")
@@ -1231,7 +1259,7 @@ std::string reason_not_to_keep(const std::string& output, const Mesh& mesh,
   if(stamp.status != "OK")
     return "the run that wrote it ended with " + stamp.status;
   const std::string format = output_format(output);
-  if(stamp.weights != settings.weights_name || stamp.admissible != settings.admissible
+  if(stamp.weights != settings.weights_name || stamp.admissible != settings.admissible || stamp.hold != settings.hold
      || stamp.criterion != settings.criterion || !(stamp.tolerance <= settings.tolerance)
      || stamp.radius != settings.radius || stamp.precision != output_precision(format, settings))
     return "it was made with other settings (" + stamp_line.substr(stamp_line.find(stamp_tag) + stamp_tag.size() + 1)
@@ -1488,6 +1516,7 @@ int main(int argc, char** argv)
                                                   : SP::default_max_gauss_seidel_sweeps),
       SP::parameters::preserve_bijectivity(settings.backtracking), SP::parameters::nonlinear_solver(settings.solver),
       SP::parameters::progress_callback(report), SP::parameters::admissible_weights(settings.admissible),
+      SP::parameters::hold_weights(settings.hold),
       SP::parameters::multilevel(settings.multilevel), CGAL::parameters::verbose(settings.verbose),
       SP::parameters::convergence_test(settings.criterion == "paper" ? SP::Convergence_test::PAPER_RESIDUAL
                                                                      : SP::Convergence_test::IMBALANCE));
@@ -1518,6 +1547,7 @@ int main(int argc, char** argv)
     stamp.status = SP::get_error_name(result.status);
     stamp.weights = settings.weights_name;
     stamp.admissible = settings.admissible;
+    stamp.hold = settings.hold;
     stamp.criterion = settings.criterion;
     stamp.tolerance = settings.tolerance;
     stamp.precision = output_precision(output_format(output), settings);

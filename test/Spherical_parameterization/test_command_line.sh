@@ -155,7 +155,7 @@ expect_error() { # description, expected exit code, text stderr must contain, ar
 }
 
 # --help names every option, shows examples, the JSON keys and the exit codes.
-for text in --output --weights --tolerance --criterion --gauss-seidel-sweeps --solver --disk-solver --max-seconds --seed --no-backtracking --admissible-weights --quiet --json \
+for text in --output --weights --tolerance --criterion --gauss-seidel-sweeps --solver --disk-solver --max-seconds --seed --no-backtracking --admissible-weights --hold-weights --quiet --json \
             --help Examples: "Exit status" max_tangential_residual mean_value cotangent; do
   grep -qF -- "$text" "$scratch/help.txt" || { echo "FAIL: --help does not mention $text"; failures=$((failures + 1)); }
 done
@@ -200,6 +200,16 @@ check "--json run" 0 $?
 check "--admissible-weights run" 0 $?
 python3 -c "import json,sys; o=json.load(open(sys.argv[1])); assert o['admissible_weights'] is True and o['raised_weights'] > 0 and o['status'] == 'OK', o" \
   "$scratch/admissible.json" || { echo "FAIL: --admissible-weights figures"; failures=$((failures + 1)); }
+# --hold-weights: on a mesh whose cotangent map is balanced nothing is held; the option is part of the request that
+# an existing output must answer (a run without it maps again).
+"$tool" "$bunny" --json -w cotangent --hold-weights -o "$scratch/held.off" > "$scratch/held.json" 2> /dev/null
+check "--hold-weights run" 0 $?
+python3 -c "import json,sys; o=json.load(open(sys.argv[1])); assert o['status'] == 'OK' and o['held_weight_vertices'] == 0 and o['held_weight_parameter'] == 1 and o['requested_weights_max_imbalance'] is None, o" \
+  "$scratch/held.json" || { echo "FAIL: --hold-weights figures"; failures=$((failures + 1)); }
+"$tool" "$bunny" --json -w cotangent -o "$scratch/held.off" > "$scratch/held_again.json" 2> /dev/null
+check "a run without --hold-weights on its output" 0 $?
+python3 -c "import json,sys; o=json.load(open(sys.argv[1])); assert o['skipped'] is False, o" \
+  "$scratch/held_again.json" || { echo "FAIL: an output of --hold-weights kept for a run without it"; failures=$((failures + 1)); }
 # --json on an invalid mesh: the same keys, the error status, no output, figures null.
 "$tool" "$shared/bad_input/genus1_rocker-arm.off" --json -o "$scratch/bad.off" > "$scratch/bad.json" 2> /dev/null
 check "--json on an invalid mesh" 2 $?
@@ -207,6 +217,7 @@ python3 - "$scratch/good.json" "$scratch/bad.json" "$scratch/json.off" "$bunny" 
 import json, math, os, sys
 keys = {"format", "input", "output", "status", "success", "skipped", "message", "vertices", "faces", "weights", "criterion", "tolerance",
         "max_imbalance", "imbalance_percentile_99", "unbalanced_vertices", "vertices_at_rounding_floor", "vertices_below_precision", "regularized_tip_vertices",
+        "held_weight_vertices", "held_weight_parameter", "requested_weights_max_imbalance",
         "max_stationarity", "unstationary_vertices", "residual", "max_tangential_residual", "flipped_faces", "total_signed_area", "bijective",
         "distortion", "initial_flipped_faces", "uniform_initial_guess_fallback", "multilevel_fallback", "admissible_weights", "raised_weights", "clamped_weights",
         "rejected_moves", "separator_size",

@@ -148,7 +148,7 @@ int main(int argc, char** argv)
   if(argc < 3)
   {
     std::cerr << "usage: test_mesh_corpus MESH "
-                 "uniform|cotangent|mean_value[_admissible][_loop1|_loop2][_morton_order] [--known-failure REASON]\n";
+                 "uniform|cotangent|mean_value[_admissible|_held][_loop1|_loop2][_morton_order] [--known-failure REASON]\n";
     return 2;
   }
   const std::string path = argv[1], weights = argv[2];
@@ -169,6 +169,8 @@ int main(int argc, char** argv)
   // refining changes the balanced map's scales and the solver's path.
   const int loop_rounds = strip(base, "_loop1") ? 1 : strip(base, "_loop2") ? 2 : 0;
   const bool admissible = strip(base, "_admissible");
+  // "_held": hold_weights(true), where the path of balanced maps from Tutte's weights ends (cotangent).
+  const bool held = strip(base, "_held");
   SP::Weighting weighting = SP::Weighting::UNIFORM;
   if(base == "cotangent")
     weighting = SP::Weighting::COTANGENT;
@@ -212,7 +214,7 @@ int main(int argc, char** argv)
   const SP::Result result = SP::spherical_parameterize(
       mesh, sphere,
       SP::parameters::combine(SP::parameters::weighting(weighting), SP::parameters::max_seconds(budget),
-                              SP::parameters::admissible_weights(admissible)));
+                              SP::parameters::admissible_weights(admissible), SP::parameters::hold_weights(held)));
   const SP::Sphere_map_certificate certificate = SP::certify_sphere_map(mesh, sphere);
 
   std::cout << path << " [" << weights << "] faces " << mesh.number_of_faces() << " status "
@@ -223,7 +225,9 @@ int main(int argc, char** argv)
             << certificate.total_signed_area << " seconds(initial/gs/newton) " << result.initial_guess.seconds << "/"
             << result.gauss_seidel.seconds << "/" << result.newton.seconds << " sweeps(gs/newton) "
             << result.gauss_seidel.iterations << "/" << result.newton.iterations
-            << (result.uniform_initial_guess_fallback ? " (uniform initial guess)" : "") << "\n";
+            << (result.uniform_initial_guess_fallback ? " (uniform initial guess)" : "") << " held "
+            << result.held_weight_vertices << " at s >= " << result.held_weight_parameter << " (requested weights' max imbalance "
+            << result.requested_weights_max_imbalance << ")\n";
 
   // The imbalance recomputed here on the written map, by its definition (uniform weights: every neighbour counts
   // the same), with the documented rounding floor: every vertex within 1e-6 of balanced, or within its floor, or
@@ -276,7 +280,14 @@ int main(int argc, char** argv)
       result.convergence_test == SP::Convergence_test::IMBALANCE
       && (least_squares ? result.max_stationarity >= 0. && result.unstationary_vertices == 0
                         : result.max_imbalance >= 0. && result.unbalanced_vertices == 0 && unbalanced == 0);
-  const bool ok = result.status == SP::Error_code::OK && balanced && certificate.flipped_faces == 0
+  // Held weights are reported with the parameter they are held at and the imbalance under the weights requested;
+  // without hold_weights no weight is held.
+  const bool holds_reported =
+      result.held_weight_vertices == 0
+          ? result.held_weight_parameter == 1. && result.requested_weights_max_imbalance < 0.
+          : held && result.held_weight_vertices <= result.number_of_vertices && result.held_weight_parameter >= 0.
+                && result.held_weight_parameter < 1. && result.requested_weights_max_imbalance >= 0.;
+  const bool ok = result.status == SP::Error_code::OK && balanced && holds_reported && certificate.flipped_faces == 0
                   && std::abs(certificate.total_signed_area - 4. * CGAL_PI) < 1e-6 && certificate.bijective
                   && result.flipped_faces == 0;
   if(!known_failure.empty())

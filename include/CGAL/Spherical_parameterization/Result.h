@@ -83,6 +83,19 @@ struct Result
   /// `vertices_below_precision`, not tested. Every other vertex keeps its own equation and is tested. 0 on most
   /// meshes (the manual's "Converged" section).
   std::size_t regularized_tip_vertices = 0;
+  /// Symmetric weights other than Tutte's (cotangent) whose balanced maps, followed from Tutte's weights, end
+  /// before the weights requested (a triangle degenerates, or the path turns back): the vertices whose weights were
+  /// held on the way, so that the others could go on. A held vertex \f$i\f$ keeps the blended weights
+  /// \f$(1 - s_{ij}) + s_{ij} w_{ij}\f$, \f$s_{ij} = \min(h_i, h_j)\f$, of the parameter \f$h_i < 1\f$ where it was
+  /// held; every other edge has the weight requested. The map is balanced for those weights (`max_imbalance` and
+  /// the convergence test are theirs) and certified like any other; `requested_weights_max_imbalance` is its largest
+  /// imbalance under the weights requested. 0 when the map is balanced for the weights requested (the manual's
+  /// "Converged" and Method sections).
+  std::size_t held_weight_vertices = 0;
+  double held_weight_parameter = 1.; ///< The smallest \f$h_i\f$ of the held vertices (1 when none is held).
+  /// The largest imbalance under the weights requested when weights were held (`held_weight_vertices` > 0); -1
+  /// otherwise (then `max_imbalance` is under the weights requested).
+  double requested_weights_max_imbalance = -1.;
   /// The map comes from the multilevel start tried after the two-disk path ended unconverged on a mesh below the
   /// multilevel size (the manual's Method section); `levels` then describes it.
   bool multilevel_fallback = false;

@@ -84,6 +84,10 @@ enum multilevel_t
 {
   multilevel
 };
+enum hold_weights_t
+{
+  hold_weights
+};
 } // namespace internal_np
 
 namespace parameters {
@@ -136,6 +140,12 @@ CGAL_SPHERICAL_PARAMETERIZATION_NAMED_PARAMETER(admissible_weights)
 /// mesh, instead of the paper's two-disk guess (used on the coarsest mesh, and as the fallback). `false`: the
 /// paper's stage 1 on the input mesh.
 CGAL_SPHERICAL_PARAMETERIZATION_NAMED_PARAMETER(multilevel)
+/// `true`: symmetric weights other than Tutte's (cotangent) whose balanced maps, followed from Tutte's weights, end
+/// before the weights given (a triangle degenerates, or the path turns back) go on with the weights of the vertices
+/// where the path ends held at the blend reached, and the map returned is balanced for those weights and certified
+/// (`Result::held_weight_vertices`, `Result::held_weight_parameter`); default `false`: such maps end
+/// `Error_code::NOT_CONVERGED`. An experimental option: see the manual's Method section for what it costs in shape.
+CGAL_SPHERICAL_PARAMETERIZATION_NAMED_PARAMETER(hold_weights)
 /// Seed of METIS' randomized separator (default 0): the same seed gives bitwise identical output.
 CGAL_SPHERICAL_PARAMETERIZATION_NAMED_PARAMETER(metis_seed)
 

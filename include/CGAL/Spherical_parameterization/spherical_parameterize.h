@@ -116,6 +116,14 @@ using Sparse_LU_disk_solver_traits = internal::Sparse_LU_solver_traits;
 ///     \cgalParamType{`bool`}
 ///     \cgalParamDefault{`false`}
 ///   \cgalParamNEnd
+///   \cgalParamNBegin{hold_weights}
+///     \cgalParamDescription{symmetric weights other than Tutte's (cotangent) whose balanced maps, followed from
+///                           Tutte's weights, end before them: hold the weights of the vertices where that path ends
+///                           at the blend reached and go on with the others; the map returned is balanced for those
+///                           weights and certified, `Result::held_weight_vertices` counts the vertices held}
+///     \cgalParamType{`bool`}
+///     \cgalParamDefault{`false`}
+///   \cgalParamNEnd
 ///   \cgalParamNBegin{multilevel}
 ///     \cgalParamDescription{on meshes of 20,000 vertices or more with uniform weights and the global solver, start
 ///                           from a coarser mesh (half-edge collapses to a quarter of the vertices, recursively) solved
@@ -350,6 +358,7 @@ Result spherical_parameterize(const TriangleMesh& tm, VertexSphereMap vsm,
   if(admissible)
     options.weighting = Weighting::USER_MAP; // the disks use the same (admissible) weights
   options.admissible_weights = admissible;
+  options.hold_weights = choose_parameter(get_parameter(np, internal_np::hold_weights), false);
 
   using Solver = typename CGAL::internal_np::Lookup_named_param_def<CGAL::internal_np::sparse_linear_solver_t,
                                                                     NamedParameters, Default_disk_solver_traits>::type;

@@ -67,6 +67,7 @@ struct Pipeline_options
 {
   Weighting weighting = Weighting::UNIFORM;
   bool admissible_weights = false; // the weights were made symmetric and positive
+  bool hold_weights = false;       // the weight continuation may hold weights where its path ends (weight_continuation.h)
   Nonlinear_solver nonlinear_solver = Nonlinear_solver::GLOBAL_NEWTON;
   int metis_seed = 0;
   const idx_t* metis_options = nullptr; // METIS_NOPTIONS values, or nullptr for METIS' defaults and metis_seed
@@ -526,12 +527,14 @@ private:
        && m_iteration_options.max_newton_sweeps > 0)
       m_newton = m_options.nonlinear_solver == Nonlinear_solver::LOCAL_NEWTON
                      ? local_newton(state, m_iteration_options, iterations_clock)
-                     : global_newton(state, m_iteration_options, iterations_clock, &initial_guess);
+                     : global_newton(state, m_iteration_options, iterations_clock, &initial_guess, tutte_map());
     else
       m_newton.residual = gauss_seidel.residual;
     m_cancelled = m_cancelled || m_newton.cancelled;
     if(!direct_done)
       m_system.regularized_tips = m_newton.regularized_tips;
+    if(!direct_done && !m_newton.weight_holds.empty())
+      hold_weights(x, m_newton.weight_holds);
     m_result.newton.iterations = m_newton.sweeps + direct_newton.sweeps;
     m_result.newton.linear_iterations = m_newton.linear_iterations + direct_newton.linear_iterations;
     m_result.newton.residual = direct_done ? direct_newton.residual : m_newton.residual;
@@ -541,6 +544,46 @@ private:
     if(m_options.verbose)
       std::cerr << "stage 3: " << m_newton.sweeps << " sweeps, Res " << m_newton.residual << ", non-positive faces "
                 << state.invalid_faces() << ", " << m_result.newton.seconds << " s\n";
+  }
+
+  // With hold_weights, where weights other than Tutte's are followed from Tutte's (global_newton: the weight
+  // continuation), its start: Tutte's balanced map by the whole pipeline with uniform weights (the multilevel start
+  // where it applies), which finds it where the two-disk guess alone does not (CGAL's bull: the path's start failed).
+  std::function<bool(std::vector<Vector3>&)> tutte_map()
+  {
+    if(!m_options.hold_weights || m_options.weighting == Weighting::UNIFORM || !m_system.symmetric
+       || m_iteration_options.convergence_test != Convergence_test::IMBALANCE)
+      return {};
+    return [this](std::vector<Vector3>& y) {
+      Sphere_system uniform = make_connectivity(m_system.triangles, m_system.number_of_vertices);
+      std::string message;
+      if(assign_weights(uniform, m_mesh, Weighting::UNIFORM, {}, message) != Error_code::OK)
+        return false;
+      Pipeline_options uniform_options = m_options;
+      uniform_options.weighting = Weighting::UNIFORM;
+      uniform_options.admissible_weights = false;
+      if(m_options.verbose)
+        std::cerr << "stage 3: Tutte's balanced map, the start of the path towards the weights requested\n";
+      const Result uniform_result = Sphere_mapper(m_mesh, uniform, uniform_options, m_solver).map(y);
+      return uniform_result.status == Error_code::OK;
+    };
+  }
+
+  // The map is balanced for the weights requested except at the vertices held by the continuation: from here on the
+  // system is the held one, so that the certificate and the figures are those of the equations the map solves.
+  void hold_weights(const std::vector<Vector3>& x, const std::vector<double>& holds)
+  {
+    m_result.requested_weights_max_imbalance = summarize_imbalance(m_system, x, m_options.iterations.tolerance).max;
+    const Sphere_system requested = m_system;
+    blend_with_tutte(requested, 1., m_system, &holds);
+    m_result.held_weight_vertices = 0;
+    m_result.held_weight_parameter = 1.;
+    for(double h : holds)
+      if(h < 1.)
+      {
+        ++m_result.held_weight_vertices;
+        m_result.held_weight_parameter = std::min(m_result.held_weight_parameter, h);
+      }
   }
 
   // The certificate and the figures, recomputed from scratch on the final positions, the status and its message.

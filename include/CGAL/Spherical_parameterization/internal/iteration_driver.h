@@ -58,6 +58,9 @@ struct Iteration_report
   double continuation_parameter = -1.; // how far the continuation from Tutte's weights got (-1: not tried)
   // The tips solved with regularized weights (stage3/tip_regularization.h) when the map returned needed them.
   std::vector<char> regularized_tips;
+  // Per vertex the continuation parameter its weights are held at (weight_continuation.h) when the map returned is
+  // balanced for those held weights; empty otherwise.
+  std::vector<double> weight_holds;
 };
 
 // The time budget, checked between iterations and, inside the long ones, between their parts.

@@ -107,6 +107,23 @@ struct Solver_tuning
   int marquardt_attempts = 6;
   double cautious_damping = 1e-10; // relative diagonal shift against the rotations (symmetric weights)
 
+  // --- Held weights (weight_continuation.h): where the path of balanced maps from Tutte's weights ends ---
+  // The path ends when its step in s falls below hold_min_step; then the vertices moving fastest along it (in their
+  // own scale, at least hold_velocity_fraction of the fastest: near a turning point the velocity is the Jacobian's
+  // null vector) are held, with one ring around them. After a step of at most hold_predict_max_step, the faces whose
+  // shape, extrapolated linearly in s, degenerates within hold_predict_factor steps are held before the step.
+  // Each attempt at a parameter first takes up to hold_free_steps of Newton's full steps (through folds, kept when
+  // they end balanced and bijective: from the Tutte map of CGAL's bull, whose legs are squeezed to edges of 1e-11,
+  // the steps that keep every triangle positive failed even at s = 0.008), then gives up after hold_patience short
+  // steps in a row (20 without holding: a failed attempt cost up to 20 steps, triceratops 24 s instead of 12 s).
+  double hold_min_step = 1e-2;
+  double hold_velocity_fraction = 0.2;
+  double hold_predict_max_step = 0.05;
+  double hold_predict_factor = 1.5;
+  std::size_t hold_free_steps = 8;
+  std::size_t hold_patience = 5;
+  std::size_t max_holds = 40;
+
   // --- The interior-point iterations (constrained_balance.h) where the weight continuation ends ---
   // The first barrier parameter: the path's last map is balanced for other weights, and its imbalances under the
   // target weights are of order 0.1 to 1 (homer, cow, triceratops), so a barrier force of 1% of the spring scale

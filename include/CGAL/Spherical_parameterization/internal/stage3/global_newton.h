@@ -39,6 +39,7 @@
 #include <array>
 #include <cmath>
 #include <cstddef>
+#include <functional>
 #include <vector>
 
 namespace CGAL {
@@ -376,9 +377,12 @@ inline Iteration_report least_squares_newton(Sphere_state& state, const Iteratio
 // Stage 3. Symmetric weights: Newton's steps through folds, then the bijectivity-preserving Moebius-aware Newton; if it gives up and the weights are not Tutte's, the
 // continuation from Tutte's weights; if that fails too, the cautious Newton from the best iterate so far.
 // Non-symmetric weights: least_squares_newton().
+// `tutte_map`, when given, computes the balanced map of Tutte's weights (the whole pipeline with uniform weights): the
+// continuation then starts from it and holds the weights where its path would end (weight_continuation.h).
 inline Iteration_report global_newton(Sphere_state& state, const Iteration_options& options,
                                       const CGAL::Real_timer& clock,
-                                      const std::vector<Vector3>* initial_guess = nullptr)
+                                      const std::vector<Vector3>* initial_guess = nullptr,
+                                      const std::function<bool(std::vector<Vector3>&)>& tutte_map = {})
 {
   const Sphere_system& system = state.system();
   if(!system.symmetric)
@@ -402,11 +406,27 @@ inline Iteration_report global_newton(Sphere_state& state, const Iteration_optio
   if(!has_tutte_weights(system))
   {
     const std::vector<Vector3> start = state.positions();
-    const Continuation_report continuation =
-        weight_continuation(system, state.positions(), options, clock, initial_guess);
+    std::vector<Vector3> balanced_tutte;
+    const bool hold = tutte_map && tutte_map(balanced_tutte) && balanced_tutte.size() == start.size();
+    const Continuation_report continuation = weight_continuation(
+        system, state.positions(), options, clock, hold ? &balanced_tutte : initial_guess, hold);
     state.assign(state.positions());
     report.sweeps += continuation.newton_steps;
     report.continuation_parameter = continuation.last_parameter;
+    if(continuation.reached && !continuation.holds.empty())
+    {
+      // Balanced for the held weights: the caller measures and certifies the map with them (Result::held_weight_*).
+      Sphere_system held = system;
+      blend_with_tutte(system, 1., held, &continuation.holds);
+      const Map_measure measure = measure_map(held, state.positions(), options.tolerance);
+      report.residual = measure.residual;
+      report.converged = has_converged(measure, state.invalid_faces(), options);
+      report.stagnated = false;
+      report.weight_holds = continuation.holds;
+      if(report.converged)
+        return report;
+      report.weight_holds.clear();
+    }
     // Whether the map reached by the continuation or the interior-point iterations passes the convergence test.
     auto passes_the_test = [&]() {
       const Map_measure measure = measure_map(system, state.positions(), options.tolerance);
