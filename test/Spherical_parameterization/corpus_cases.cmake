@@ -8,8 +8,9 @@ list(TRANSFORM SP_CGAL_CORPUS REPLACE "\\.off$" "")
 # Also in Morton order: the paper's and the larger organic ones; handle and sphere966, small, but their iterates
 # collapsed onto a point until 2026-11-24.
 set(SP_CGAL_MORTON_CORPUS triceratops cow homer bear man armadillo bunny00 handle sphere966)
-# With hold_weights, camel, diplodocus and oded_hammer take 35 to 50 s each (2026-11-26).
-set(SP_SLOW_CASES camel.cotangent_held diplodocus.cotangent_held oded_hammer.cotangent_held)
+# With hold_weights, camel and diplodocus take 70 and 150 s (2026-11-26: the held continuation comes after every
+# other way).
+set(SP_SLOW_CASES camel.cotangent_held diplodocus.cotangent_held)
 
 # A missing corpus must fail the run, not silently shrink it.
 if(NOT SP_SHARED_CORPUS)

@@ -1075,12 +1075,12 @@ TEST(WeightContinuation, HoldsWeightsWherePathEnds)
   EXPECT_TRUE(SPI::certify(system.triangles, x).bijective);
 }
 
-// The public option: cotangent weights on CGAL's dino.off end NOT_CONVERGED without it (known_failures.txt); with it,
+// The public option: cotangent weights on CGAL's u.off end NOT_CONVERGED without it (known_failures.txt); with it,
 // OK with the held vertices reported, and on a mesh whose cotangent map is balanced nothing is held.
 TEST(SphericalParameterize, HoldWeights)
 {
   {
-    Mesh mesh = read_mesh(cgal_data + "/dino.off");
+    Mesh mesh = read_mesh(cgal_data + "/u.off");
     auto sphere = mesh.add_property_map<Mesh::Vertex_index, Point>("v:sphere", Point(0, 0, 0)).first;
     const SP::Result result = SP::spherical_parameterize(
         mesh, sphere,
