@@ -1093,6 +1093,25 @@ TEST(SphericalParameterize, HoldWeights)
     EXPECT_TRUE(SP::certify_sphere_map(mesh, sphere).bijective);
   }
   {
+    // A cancel while Tutte's map that the held continuation starts from is computed (its own "initial guess", the
+    // second one reported) cancels the call.
+    Mesh mesh = read_mesh(cgal_data + "/u.off");
+    auto sphere = mesh.add_property_map<Mesh::Vertex_index, Point>("v:sphere", Point(0, 0, 0)).first;
+    int initial_guesses = 0;
+    const SP::Result result = SP::spherical_parameterize(
+        mesh, sphere,
+        SP::parameters::combine(SP::parameters::weighting(SP::Weighting::COTANGENT),
+                                SP::parameters::hold_weights(true),
+                                SP::parameters::progress_callback([&](const SP::Progress& progress) {
+                                  if(std::string(progress.stage) == "initial guess")
+                                    ++initial_guesses;
+                                  return initial_guesses < 2;
+                                })));
+    EXPECT_EQ(initial_guesses, 2);
+    EXPECT_EQ(result.status, SP::Error_code::CANCELLED) << result.message;
+    EXPECT_EQ(result.held_weight_vertices, 0u);
+  }
+  {
     Mesh mesh = read_mesh(cgal_data + "/sphere966.off");
     auto sphere = mesh.add_property_map<Mesh::Vertex_index, Point>("v:sphere", Point(0, 0, 0)).first;
     const SP::Result result = SP::spherical_parameterize(

@@ -565,6 +565,8 @@ private:
       if(m_options.verbose)
         std::cerr << "stage 3: Tutte's balanced map, the start of the path towards the weights requested\n";
       const Result uniform_result = Sphere_mapper(m_mesh, uniform, uniform_options, m_solver).map(y);
+      // A cancel there (the progress callback, the command line's SIGTERM) is this call's cancel.
+      m_cancelled = m_cancelled || uniform_result.status == Error_code::CANCELLED;
       return uniform_result.status == Error_code::OK;
     };
   }
