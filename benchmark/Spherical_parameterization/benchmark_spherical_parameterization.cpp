@@ -13,7 +13,8 @@
 // Solvers: global = the default (global Newton, multilevel start where it applies, stopping on the imbalance);
 // local = the paper's local Newton, stopping on the imbalance; paper = the paper's setting as published (two-disk
 // start, local Newton, stopping on its Res).
-// CGAL::Parallel_if_available_tag by default (the two disks of stage 1 at the same time when TBB is there);
+// CGAL::Parallel_if_available_tag by default (with TBB: the two disks of stage 1 at the same time, the multilevel
+// levels' preconditioners built ahead, the Newton steps' independent quantities side by side; the same maps);
 // --sequential uses CGAL::Sequential_tag.
 //
 // Each configuration runs N times; the table gives the median seconds and the figures of the median run.

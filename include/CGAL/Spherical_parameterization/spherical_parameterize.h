@@ -61,7 +61,10 @@ using Sparse_LU_disk_solver_traits = internal::Sparse_LU_solver_traits;
 /// final (best) iterate, also when the status is `NOT_CONVERGED` or `NOT_BIJECTIVE`.
 ///
 /// \tparam ConcurrencyTag `CGAL::Sequential_tag`, `CGAL::Parallel_tag` (needs TBB: the two disks of stage 1 are
-///         embedded at the same time) or `CGAL::Parallel_if_available_tag`. The result does not depend on it.
+///         embedded at the same time; each level of the multilevel start builds its Newton steps' preconditioner
+///         while the coarser levels are solved; from 10,000 vertices on, the Newton steps compute independent
+///         quantities at the same time) or `CGAL::Parallel_if_available_tag`. The result does not depend on it: it is
+///         the same to the last bit.
 /// \tparam TriangleMesh a model of `FaceListGraph` and `VertexListGraph`; also of `HalfedgeListGraph` when
 ///         `halfedge_weight_map` is given (its halfedges are then iterated).
 /// \tparam VertexSphereMap a model of `WritablePropertyMap` from vertices to a `Point_3` constructible from three doubles.
@@ -241,6 +244,7 @@ Result spherical_parameterize(const TriangleMesh& tm, VertexSphereMap vsm,
   internal::Pipeline_options options;
   options.call_clock = clock;
   options.parallel = std::is_convertible<ConcurrencyTag, CGAL::Parallel_tag>::value;
+  options.iterations.parallel = options.parallel;
   options.weighting = choose_parameter(get_parameter(np, internal_np::weighting),
                                        has_user_weights ? Weighting::USER_MAP : Weighting::UNIFORM);
   options.nonlinear_solver =

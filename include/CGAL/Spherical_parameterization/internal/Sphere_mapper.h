@@ -272,6 +272,11 @@ private:
     clock.start();
     m_system.regularized_tips.clear(); // those of an earlier attempt or path belong to its map (the fallback keeps them)
     const std::size_t n = m_system.number_of_vertices;
+    // With CGAL::Parallel_tag, the preconditioner of this level's Newton steps is built while the coarser levels are
+    // solved (Laplacian_preconditioner_ahead).
+    if(m_options.parallel && !m_preconditioner_ahead.started()
+       && n >= m_options.iterations.tuning.iterative_newton_min_vertices)
+      m_preconditioner_ahead.start(m_system);
     Coarsening coarsening =
         coarsen_mesh(m_mesh.points, m_system.triangles, static_cast<std::size_t>(ratio * static_cast<double>(n)));
     Sphere_system coarse_system =
@@ -307,6 +312,7 @@ private:
     const std::size_t rounds = coarsening.rounds;
     coarsening = Coarsening();
     Iteration_options level_options = m_options.iterations;
+    level_options.preconditioner_ahead = &m_preconditioner_ahead;
     if(level_options.max_seconds >= 0.)
       level_options.max_seconds = std::max(0., level_options.max_seconds - m_options.call_clock.time());
     Sphere_state state(m_system, x);
@@ -682,6 +688,8 @@ private:
   Iteration_report m_newton;
   double m_multilevel_newton_seconds = 0.;
   bool m_multilevel_tried = false; // the multilevel start came first (multilevel_applies): no fallback to it
+  // Last: destroyed first, it waits for its thread, which reads m_system.
+  Laplacian_preconditioner_ahead m_preconditioner_ahead;
 };
 
 } // namespace internal

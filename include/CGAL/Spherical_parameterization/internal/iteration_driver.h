@@ -28,6 +28,8 @@ namespace CGAL {
 namespace Spherical_parameterization {
 namespace internal {
 
+class Laplacian_preconditioner_ahead; // stage3/tangent_multigrid.h
+
 struct Iteration_options
 {
   double tolerance = 1e-6;
@@ -41,6 +43,12 @@ struct Iteration_options
   std::function<bool(const char* stage, std::size_t sweep, double residual, std::size_t invalid_faces)> progress;
   // Polled inside long iterations (it repeats the last progress report); returning false cancels.
   std::function<bool()> keep_going;
+  // Stage 3's preconditioner of the system being solved, built ahead on another thread (levels of the multilevel
+  // start with CGAL::Parallel_tag), or nullptr: stage 3 builds its own.
+  Laplacian_preconditioner_ahead* preconditioner_ahead = nullptr;
+  // CGAL::Parallel_tag with TBB: on meshes of tuning.side_by_side_min_vertices or more, stage 3 runs independent
+  // computations at the same time (side_by_side.h; the iterates do not change).
+  bool parallel = false;
 
   bool cancel_requested() const { return keep_going && !keep_going(); }
 };

@@ -48,6 +48,10 @@ struct Solver_tuning
   // n^1.5; MINRES 0.05 to 0.1 s at 38k, like n. On small meshes with thin parts the exact step is the more robust
   // (CGAL's cow and hand: 1e-2-inexact steps from the initial guess end on a folded balanced map).
   std::size_t iterative_newton_min_vertices = 8000;
+  // With CGAL::Parallel_tag, the Newton steps compute independent quantities at the same time (the boosts' Jacobian
+  // beside their energy and gradient, the line searches' tests beside their merits: side_by_side.h) from this many
+  // vertices on; below, handing the work to another thread costs about what it saves.
+  std::size_t side_by_side_min_vertices = 10000;
   // Inexact Newton (Eisenstat and Walker's second forcing term): the linear residual is reduced by
   // eta_k = 0.9 (Res_k / Res_{k-1})^2 within these bounds (looser steps, 0.1 or 0.3, wander on igea and man). A step
   // the line search rejects is solved again with the smallest forcing before the phase gives up.

@@ -28,6 +28,7 @@
 #include <CGAL/Spherical_parameterization/internal/Sphere_system.h>
 #include <CGAL/Spherical_parameterization/internal/Vector3.h>
 #include <CGAL/Spherical_parameterization/internal/iteration_driver.h>
+#include <CGAL/Spherical_parameterization/internal/side_by_side.h>
 
 #include <Eigen/Dense>
 
@@ -223,8 +224,12 @@ enum class Boost_aim
 // Boost_aim::MAXIMUM, a Newton step that does not go up E is replaced by the gradient. Stops when |g| <= target,
 // after tuning.boost_max_iterations, or when no step helps. Returns the number of boosts applied.
 // `w`: symmetric_raw_weights(state.system()), computed once by a caller that balances the boosts again and again.
+// `parallel`: the Jacobian is computed beside E and g (at the start, where it is wasted if g is already small enough,
+// and beside the update of the state after each boost), and each trial's test of the faces beside its E and g
+// (side_by_side.h: the same results).
 inline std::size_t balance_boosts(Sphere_state& state, const std::vector<double>& w, double target,
-                                  const Solver_tuning& tuning, Boost_aim aim = Boost_aim::MAXIMUM)
+                                  const Solver_tuning& tuning, Boost_aim aim = Boost_aim::MAXIMUM,
+                                  bool parallel = false)
 {
   const Sphere_system& system = state.system();
   const std::vector<Vector3>& x = state.positions();
@@ -243,7 +248,14 @@ inline std::size_t balance_boosts(Sphere_state& state, const std::vector<double>
   std::size_t applied = 0;
   Eigen::Vector3d g;
   double energy = 0.;
-  spring_energy_and_boost_gradient(system, w, x, &energy, &g);
+  const bool jacobian_beside = parallel && aim == Boost_aim::ROOT;
+  Eigen::Matrix3d jacobian_ahead; // boost_gradient_jacobian at x, when jacobian_beside
+  side_by_side(
+      jacobian_beside, [&]() { spring_energy_and_boost_gradient(system, w, x, &energy, &g); },
+      [&]() {
+        if(jacobian_beside)
+          jacobian_ahead = boost_gradient_jacobian(system, w, x);
+      });
   for(std::size_t iteration = 0; iteration < tuning.boost_max_iterations; ++iteration)
   {
     if(!(g.norm() > target))
@@ -251,7 +263,7 @@ inline std::size_t balance_boosts(Sphere_state& state, const std::vector<double>
     Eigen::Matrix3d slope;
     if(aim == Boost_aim::ROOT)
     {
-      slope = boost_gradient_jacobian(system, w, x);
+      slope = jacobian_beside ? jacobian_ahead : boost_gradient_jacobian(system, w, x);
     }
     else
     {
@@ -276,15 +288,27 @@ inline std::size_t balance_boosts(Sphere_state& state, const std::vector<double>
         tuning.boost_min_step,
         [&](double t) {
           boosted(t * c);
-          return state.keeps_positive_faces(y);
+          if(!parallel)
+            return state.keeps_positive_faces(y);
+          bool keeps = false;
+          side_by_side(
+              true, [&]() { keeps = state.keeps_positive_faces(y); },
+              [&]() { spring_energy_and_boost_gradient(system, w, y, &trial_energy, &trial_gradient); });
+          return keeps;
         },
         [&](double) {
-          spring_energy_and_boost_gradient(system, w, y, &trial_energy, &trial_gradient);
+          if(!parallel)
+            spring_energy_and_boost_gradient(system, w, y, &trial_energy, &trial_gradient);
           return trial_energy > energy || trial_gradient.norm() < g.norm();
         });
     if(accepted == 0.)
       break;
-    state.assign(y, true);
+    side_by_side(
+        jacobian_beside, [&]() { state.assign(y, true); },
+        [&]() {
+          if(jacobian_beside)
+            jacobian_ahead = boost_gradient_jacobian(system, w, y); // y is the next x
+        });
     energy = trial_energy;
     g = trial_gradient;
     ++applied;

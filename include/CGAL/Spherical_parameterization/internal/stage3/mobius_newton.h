@@ -19,6 +19,7 @@
 #ifndef CGAL_SPHERICAL_PARAMETERIZATION_INTERNAL_STAGE3_MOBIUS_NEWTON_H
 #define CGAL_SPHERICAL_PARAMETERIZATION_INTERNAL_STAGE3_MOBIUS_NEWTON_H
 
+#include <CGAL/Spherical_parameterization/internal/side_by_side.h>
 #include <CGAL/Spherical_parameterization/internal/sphere_iterations.h>
 #include <CGAL/Spherical_parameterization/internal/stage3/mobius.h>
 #include <CGAL/Spherical_parameterization/internal/stage3/tangent_krylov_system.h>
@@ -129,7 +130,10 @@ inline Iteration_report mobius_newton(Sphere_state& state, const Iteration_optio
   for(double w : system.weights)
     positive_weights = positive_weights && w > 0.;
   const bool iterative = allow_folds && positive_weights && n >= tuning.iterative_newton_min_vertices;
-  Tangent_krylov_system krylov(system);
+  const bool parallel = options.parallel && n >= tuning.side_by_side_min_vertices; // side_by_side.h
+  Tangent_krylov_system krylov(system, iterative && options.preconditioner_ahead != nullptr
+                                           ? options.preconditioner_ahead->get(system)
+                                           : nullptr);
   const std::vector<double> boost_weights = symmetric_raw_weights(system);
   double forcing = tuning.newton_max_forcing;
   std::vector<Vector3> step, trial(n);
@@ -158,7 +162,7 @@ inline Iteration_report mobius_newton(Sphere_state& state, const Iteration_optio
 
     // The boost gradient only needs to be small next to the residual forces that Newton is about to remove.
     balance_boosts(state, boost_weights, tuning.boost_target_factor * residual * static_cast<double>(n), tuning,
-                   boost_aim);
+                   boost_aim, parallel);
     if(!driver.within_budget())
       break;
     const double previous_residual = residual;
@@ -187,6 +191,12 @@ inline Iteration_report mobius_newton(Sphere_state& state, const Iteration_optio
       // after the balancing (0.1 to 5 on bunny00's finest level, where it cost 15 steps instead of 6).
       if(boost_aim == Boost_aim::ROOT)
         boost = Vector3();
+      // With `parallel`, each trial's merit is computed beside its test of the faces (wasted when the test fails).
+      double trial_merit = 0.;
+      auto compute_trial_merit = [&]() {
+        trial_merit = step_merit == Step_merit::IMBALANCE ? imbalance_merit(system, trial)
+                                                          : compute_residuals(system, trial).paper;
+      };
       accepted_t = backtracking_line_search(
           tuning.newton_min_step,
           [&](double t) {
@@ -195,12 +205,22 @@ inline Iteration_report mobius_newton(Sphere_state& state, const Iteration_optio
               const Vector3 y = x[i] + t * step[i];
               trial[i] = apply_boost(y * (1. / length(y)), t * boost);
             }
-            return allow_folds ? has_degree_one(system, trial)
-                               : !options.preserve_bijectivity || state.keeps_positive_faces(trial);
+            bool admissible = false;
+            side_by_side(
+                parallel,
+                [&]() {
+                  admissible = allow_folds ? has_degree_one(system, trial)
+                                           : !options.preserve_bijectivity || state.keeps_positive_faces(trial);
+                },
+                [&]() {
+                  if(parallel)
+                    compute_trial_merit();
+                });
+            return admissible;
           },
           [&](double) {
-            const double trial_merit = step_merit == Step_merit::IMBALANCE ? imbalance_merit(system, trial)
-                                                                           : compute_residuals(system, trial).paper;
+            if(!parallel)
+              compute_trial_merit();
             return trial_merit < merit;
           });
       if(accepted_t > 0.)

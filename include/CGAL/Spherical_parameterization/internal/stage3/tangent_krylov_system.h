@@ -43,13 +43,17 @@ namespace internal {
 class Tangent_krylov_system
 {
 public:
-  explicit Tangent_krylov_system(const Sphere_system& system) : m_system(system) {}
+  // `prebuilt`: the preconditioner of `system` built already (Laplacian_preconditioner_ahead), or nullptr to build one
+  // on the first call of assemble().
+  explicit Tangent_krylov_system(const Sphere_system& system, Tangent_laplacian_preconditioner* prebuilt = nullptr)
+    : m_system(system), m_preconditioner(prebuilt != nullptr ? prebuilt : &m_own_preconditioner)
+  {}
 
   // Assembles the equations at x (frames, diagonal, right-hand side); builds the multigrid on the first call.
   bool assemble(const std::vector<Vector3>& x)
   {
     const std::size_t n = m_system.number_of_vertices;
-    if(!m_preconditioner.is_built() && !m_preconditioner.build(m_system, false))
+    if(!m_preconditioner->is_built() && !m_preconditioner->build(m_system, false))
       return false;
     m_t1.resize(n);
     m_t2.resize(n);
@@ -123,7 +127,7 @@ private:
   {
     m_projected.resize(2 * m_system.number_of_vertices);
     m_rotations.project_out(in, m_projected.data());
-    m_preconditioner.apply(m_t1, m_t2, m_projected.data(), out);
+    m_preconditioner->apply(m_t1, m_t2, m_projected.data(), out);
     m_rotations.project_out(out);
   }
 
@@ -131,7 +135,8 @@ private:
   std::vector<Vector3> m_t1, m_t2, m_ambient;
   std::vector<double> m_alpha, m_rhs, m_solution, m_projected;
   Tangent_basis3 m_rotations; // orthonormal
-  Tangent_laplacian_preconditioner m_preconditioner;
+  Tangent_laplacian_preconditioner m_own_preconditioner;
+  Tangent_laplacian_preconditioner* m_preconditioner; // m_own_preconditioner or the one built ahead
   AMG::Krylov_workspace m_workspace;
   int m_last_iterations = 0;
   double m_last_relative_residual = 0.;

@@ -11,6 +11,8 @@
 //   applied to the three ambient coordinates of a tangent field and projected back on the tangent planes. Both
 //   Jacobians are, up to a diagonal scaling of their rows, that projected Laplacian plus terms of the order of the
 //   squared edge lengths and of the frame rotations between neighbours.
+// - Laplacian_preconditioner_ahead: that V-cycle's hierarchy built on another thread while the coarser levels of the
+//   multilevel start are solved.
 // - Rotation_basis: an orthonormal basis of the three rotation fields, the null space of both Jacobians, and the
 //   projection orthogonal to it.
 
@@ -21,10 +23,13 @@
 #include <CGAL/Spherical_parameterization/internal/AMG/Ruge_stueben_hierarchy.h>
 #include <CGAL/Spherical_parameterization/internal/Sphere_system.h>
 #include <CGAL/Spherical_parameterization/internal/Vector3.h>
+#include <CGAL/Spherical_parameterization/internal/deferred_stop_signals.h>
 
 #include <algorithm>
 #include <cmath>
 #include <cstddef>
+#include <future>
+#include <memory>
 #include <utility>
 #include <vector>
 
@@ -106,6 +111,55 @@ private:
   AMG::Ruge_stueben_hierarchy m_hierarchy;
   std::vector<double> m_coordinates_in, m_coordinates_out; // three ambient coordinates, interleaved
   bool m_built = false;
+};
+
+// The preconditioner of one Sphere_system, built on a thread of its own as soon as the system exists. It depends on the
+// weights only, not on the positions, so on a level of the multilevel start it is built while the coarser levels are
+// solved, and its set-up (armadillo Loop x3: 3.3 s on its finest level, as long as a Newton step) leaves the path.
+// The same hierarchy is built either way: the iterates do not change. The thread reads the system, which must not
+// change or go before this object does (the destructor waits for the thread).
+class Laplacian_preconditioner_ahead
+{
+public:
+  Laplacian_preconditioner_ahead() = default;
+  Laplacian_preconditioner_ahead(const Laplacian_preconditioner_ahead&) = delete;
+  Laplacian_preconditioner_ahead& operator=(const Laplacian_preconditioner_ahead&) = delete;
+  ~Laplacian_preconditioner_ahead()
+  {
+    if(m_future.valid())
+      m_future.wait();
+  }
+
+  bool started() const { return m_system != nullptr; }
+
+  void start(const Sphere_system& system)
+  {
+    m_system = &system;
+    m_future = std::async(std::launch::async, [&system]() {
+      // No stop signal for this thread: while a METIS call of the calling thread holds them back, METIS' own handler
+      // is installed, and a signal delivered here would run it (deferred_stop_signals.h).
+      const Deferred_stop_signals hold_back;
+      std::unique_ptr<Tangent_laplacian_preconditioner> preconditioner(new Tangent_laplacian_preconditioner());
+      preconditioner->build(system, false);
+      return preconditioner;
+    });
+  }
+
+  // The preconditioner, once built, if it was built for `system` itself (a copy may have other weights: tip
+  // regularization, weight continuation); nullptr otherwise.
+  Tangent_laplacian_preconditioner* get(const Sphere_system& system)
+  {
+    if(&system != m_system)
+      return nullptr;
+    if(m_future.valid())
+      m_preconditioner = m_future.get();
+    return m_preconditioner && m_preconditioner->is_built() ? m_preconditioner.get() : nullptr;
+  }
+
+private:
+  const Sphere_system* m_system = nullptr;
+  std::future<std::unique_ptr<Tangent_laplacian_preconditioner>> m_future;
+  std::unique_ptr<Tangent_laplacian_preconditioner> m_preconditioner;
 };
 
 // Three orthonormal vectors of the 2n tangent coordinates, and the projection orthogonal to them.

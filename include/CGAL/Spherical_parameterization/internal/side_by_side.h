@@ -1,0 +1,44 @@
+// Copyright (c) 2026 CGAL Spherical Parameterization contributors.
+// This file is part of CGAL Spherical Parameterization, a package in CGAL's style (www.cgal.org).
+//
+// SPDX-License-Identifier: GPL-3.0-or-later
+//
+// Author(s)     : CGAL Spherical Parameterization contributors
+
+// Two independent computations at the same time (CGAL::Parallel_tag with TBB), or one after the other. Each is done
+// by one thread exactly as it would be alone, so the results are the same to the last bit either way: stage 3's
+// parallelism does not change its iterates, and with them the outcome on a hard mesh. (Splitting a sum over the
+// vertices between threads would change its rounding, and the paths of the Newton steps are sensitive to that.)
+
+#ifndef CGAL_SPHERICAL_PARAMETERIZATION_INTERNAL_SIDE_BY_SIDE_H
+#define CGAL_SPHERICAL_PARAMETERIZATION_INTERNAL_SIDE_BY_SIDE_H
+
+#ifdef CGAL_LINKED_WITH_TBB
+#include <tbb/parallel_invoke.h>
+#endif
+
+namespace CGAL {
+namespace Spherical_parameterization {
+namespace internal {
+
+template <class First, class Second>
+void side_by_side(bool parallel, const First& first, const Second& second)
+{
+#ifdef CGAL_LINKED_WITH_TBB
+  if(parallel)
+  {
+    tbb::parallel_invoke(first, second);
+    return;
+  }
+#else
+  (void)parallel;
+#endif
+  first();
+  second();
+}
+
+} // namespace internal
+} // namespace Spherical_parameterization
+} // namespace CGAL
+
+#endif // CGAL_SPHERICAL_PARAMETERIZATION_INTERNAL_SIDE_BY_SIDE_H
