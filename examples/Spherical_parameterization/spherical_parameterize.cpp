@@ -346,7 +346,7 @@ private:
       return "stage 1/3, initial guess";
     if(stage == "gauss-seidel")
       return "stage 2/3, projected Gauss-Seidel";
-    if(stage == "global newton" || stage == "local newton")
+    if(stage == "global newton" || stage == "local newton" || stage == "weight continuation")
       return "stage 3/3, " + stage;
     return stage;
   }

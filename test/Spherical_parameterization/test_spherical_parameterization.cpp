@@ -1020,8 +1020,16 @@ TEST(WeightContinuation, FromTutteWeights)
     SPI::Iteration_options options;
     options.tolerance = 1e-12;
     options.convergence_test = SP::Convergence_test::PAPER_RESIDUAL;
+    // The progress reports of its Newton steps name the continuation (their counts start again at each blend).
+    std::set<std::string> stages;
+    options.progress = [&stages](const char* stage, std::size_t, double, std::size_t) {
+      stages.insert(stage);
+      return true;
+    };
     const SPI::Continuation_report report = SPI::weight_continuation(system, x, options, started_timer());
     EXPECT_TRUE(report.reached);
+    EXPECT_EQ(stages.count("weight continuation"), 1u);
+    EXPECT_EQ(stages.count("global newton"), 0u);
     EXPECT_LT(SPI::compute_residuals(system, x).paper, 1e-12);
     EXPECT_TRUE(SPI::certify(system.triangles, x).bijective);
   }

@@ -22,7 +22,9 @@ namespace Spherical_parameterization {
 /// inside an iteration that lasts, the last report again with its time updated, at most every half second).
 struct Progress
 {
-  const char* stage = ""; ///< "initial guess", "gauss-seidel", "global newton" or "local newton".
+  /// "initial guess", "gauss-seidel", "global newton", "local newton", or "weight continuation" (the global Newton
+  /// steps that follow balanced maps from Tutte's weights to cotangent weights, one phase per blend of the weights).
+  const char* stage = "";
   /// Iterations so far of the current phase (0 for the initial guess): the count starts again with each phase of
   /// stage 3 (such as Newton's full steps, then the bijectivity-preserving ones) and on each level.
   std::size_t iteration = 0;

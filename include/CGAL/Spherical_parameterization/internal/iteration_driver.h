@@ -49,6 +49,9 @@ struct Iteration_options
   // CGAL::Parallel_tag with TBB: on meshes of tuning.side_by_side_min_vertices or more, stage 3 runs independent
   // computations at the same time (side_by_side.h; the iterates do not change).
   bool parallel = false;
+  // The stage that mobius_newton's progress reports name (Progress::stage): "weight continuation" for its solves along
+  // the weight continuation (weight_continuation.h), whose counts start again at each blend of the weights.
+  const char* newton_stage = "global newton";
 
   bool cancel_requested() const { return keep_going && !keep_going(); }
 };

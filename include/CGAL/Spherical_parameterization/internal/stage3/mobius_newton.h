@@ -113,7 +113,7 @@ inline Iteration_report mobius_newton(Sphere_state& state, const Iteration_optio
                                       Boost_aim boost_aim = Boost_aim::MAXIMUM)
 {
   const Solver_tuning& tuning = options.tuning;
-  Iteration_driver driver(state, options, clock, "global newton", options.max_newton_sweeps);
+  Iteration_driver driver(state, options, clock, options.newton_stage, options.max_newton_sweeps);
   // Full steps that lower Res forever without balancing any vertex: a drift towards collapse.
   driver.watch_stagnation(tuning.newton_stagnation_window);
   Mobius_newton_statistics counts;

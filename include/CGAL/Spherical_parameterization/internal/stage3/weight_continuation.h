@@ -175,6 +175,7 @@ inline Continuation_report weight_continuation(const Sphere_system& target, std:
   Continuation_report report;
   Sphere_system blend = target;
   Iteration_options path = options;
+  path.newton_stage = "weight continuation"; // its progress reports say so: their counts start at each blend
   // The imbalance is scale-free; the paper's Res needs to be far below the tolerance for a good start.
   if(options.convergence_test == Convergence_test::PAPER_RESIDUAL)
     path.tolerance = std::min(options.tolerance, path_tolerance);
