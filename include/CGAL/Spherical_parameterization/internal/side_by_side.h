@@ -37,6 +37,23 @@ void side_by_side(bool parallel, const First& first, const Second& second)
   second();
 }
 
+// A line-search trial: its test (which it returns) and its merit, which the acceptance needs only when the test
+// passes. With `parallel` the merit is computed beside the test (wasted when the test fails); otherwise after it.
+template <class Test, class Merit>
+bool test_with_merit(bool parallel, const Test& test, const Merit& merit)
+{
+  bool passed = false;
+  if(parallel)
+  {
+    side_by_side(true, [&]() { passed = test(); }, merit);
+    return passed;
+  }
+  passed = test();
+  if(passed)
+    merit();
+  return passed;
+}
+
 } // namespace internal
 } // namespace Spherical_parameterization
 } // namespace CGAL

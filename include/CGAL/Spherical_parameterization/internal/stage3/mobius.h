@@ -288,17 +288,11 @@ inline std::size_t balance_boosts(Sphere_state& state, const std::vector<double>
         tuning.boost_min_step,
         [&](double t) {
           boosted(t * c);
-          if(!parallel)
-            return state.keeps_positive_faces(y);
-          bool keeps = false;
-          side_by_side(
-              true, [&]() { keeps = state.keeps_positive_faces(y); },
+          return test_with_merit(
+              parallel, [&]() { return state.keeps_positive_faces(y); },
               [&]() { spring_energy_and_boost_gradient(system, w, y, &trial_energy, &trial_gradient); });
-          return keeps;
         },
         [&](double) {
-          if(!parallel)
-            spring_energy_and_boost_gradient(system, w, y, &trial_energy, &trial_gradient);
           return trial_energy > energy || trial_gradient.norm() < g.norm();
         });
     if(accepted == 0.)

@@ -191,12 +191,7 @@ inline Iteration_report mobius_newton(Sphere_state& state, const Iteration_optio
       // after the balancing (0.1 to 5 on bunny00's finest level, where it cost 15 steps instead of 6).
       if(boost_aim == Boost_aim::ROOT)
         boost = Vector3();
-      // With `parallel`, each trial's merit is computed beside its test of the faces (wasted when the test fails).
       double trial_merit = 0.;
-      auto compute_trial_merit = [&]() {
-        trial_merit = step_merit == Step_merit::IMBALANCE ? imbalance_merit(system, trial)
-                                                          : compute_residuals(system, trial).paper;
-      };
       accepted_t = backtracking_line_search(
           tuning.newton_min_step,
           [&](double t) {
@@ -205,22 +200,19 @@ inline Iteration_report mobius_newton(Sphere_state& state, const Iteration_optio
               const Vector3 y = x[i] + t * step[i];
               trial[i] = apply_boost(y * (1. / length(y)), t * boost);
             }
-            bool admissible = false;
-            side_by_side(
+            // With `parallel`, the merit is computed beside the test of the faces (test_with_merit).
+            return test_with_merit(
                 parallel,
                 [&]() {
-                  admissible = allow_folds ? has_degree_one(system, trial)
-                                           : !options.preserve_bijectivity || state.keeps_positive_faces(trial);
+                  return allow_folds ? has_degree_one(system, trial)
+                                     : !options.preserve_bijectivity || state.keeps_positive_faces(trial);
                 },
                 [&]() {
-                  if(parallel)
-                    compute_trial_merit();
+                  trial_merit = step_merit == Step_merit::IMBALANCE ? imbalance_merit(system, trial)
+                                                                    : compute_residuals(system, trial).paper;
                 });
-            return admissible;
           },
           [&](double) {
-            if(!parallel)
-              compute_trial_merit();
             return trial_merit < merit;
           });
       if(accepted_t > 0.)
