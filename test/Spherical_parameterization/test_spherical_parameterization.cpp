@@ -1008,6 +1008,26 @@ TEST(MultilevelStart, ConvergesAndReportsItsLevels)
   }
 }
 
+// Symmetric positive weights other than Tutte's take the multilevel start too, its coarser levels solved with Tutte's
+// weights, the mesh given with its own: mean-value weights made admissible on the conte69 cortex (0.5 s).
+TEST(MultilevelStart, TakesOtherSymmetricPositiveWeights)
+{
+  Mesh mesh = read_mesh(shared_meshes + "/brainspace_conte69_32k_lh.off");
+  ASSERT_GE(num_vertices(mesh), SPI::Solver_tuning().multilevel_min_vertices);
+  auto sphere = mesh.add_property_map<Mesh::Vertex_index, Point>("v:sphere", Point()).first;
+  const SP::Result result = SP::spherical_parameterize(
+      mesh, sphere,
+      SP::parameters::combine(SP::parameters::weighting(SP::Weighting::MEAN_VALUE),
+                              SP::parameters::admissible_weights(true), SP::parameters::max_seconds(120.)));
+  ASSERT_EQ(result.status, SP::Error_code::OK) << result.message;
+  EXPECT_TRUE(result.admissible_weights);
+  EXPECT_LE(result.max_imbalance, 1e-6);
+  EXPECT_TRUE(exact_certificate(mesh, sphere).bijective());
+  ASSERT_GE(result.levels.size(), 2u) << "no multilevel start for admissible weights";
+  EXPECT_EQ(result.levels.back().vertices, num_vertices(mesh));
+  EXPECT_EQ(result.levels.back().newton_steps, result.newton.iterations);
+}
+
 // Cotangent weights made admissible (symmetric, positive) on cow: Newton alone gives up, the continuation from
 // Tutte's weights reaches their solution. Plain cotangent weights on triceratops: the path of solutions ends early.
 TEST(WeightContinuation, FromTutteWeights)

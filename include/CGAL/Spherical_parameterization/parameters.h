@@ -135,10 +135,11 @@ CGAL_SPHERICAL_PARAMETERIZATION_NAMED_PARAMETER(nonlinear_solver)
 /// may be negative) and mean-value weights (not symmetric) in general do not. `Result::raised_weights` counts the
 /// edges raised.
 CGAL_SPHERICAL_PARAMETERIZATION_NAMED_PARAMETER(admissible_weights)
-/// `true` (default): on meshes of `multilevel_min_vertices` vertices or more with uniform weights and the global
-/// Newton solver, start from a coarser mesh (half-edge collapses) solved first, its map carried back to the input
-/// mesh, instead of the paper's two-disk guess (used on the coarsest mesh, and as the fallback). `false`: the
-/// paper's stage 1 on the input mesh.
+/// `true` (default): on meshes of `multilevel_min_vertices` vertices or more with symmetric positive weights (uniform,
+/// admissible, or the user's or cotangent weights when all positive) and the global Newton solver, start from a
+/// coarser mesh (half-edge collapses) solved first with Tutte's weights, its map carried back to the input mesh,
+/// instead of the paper's two-disk guess (used on the coarsest mesh, and as the fallback). `false`: the paper's
+/// stage 1 on the input mesh.
 CGAL_SPHERICAL_PARAMETERIZATION_NAMED_PARAMETER(multilevel)
 /// `true`: symmetric weights other than Tutte's (cotangent) whose balanced maps, followed from Tutte's weights, end
 /// before the weights given (a triangle degenerates, or the path turns back) go on with the weights of the vertices

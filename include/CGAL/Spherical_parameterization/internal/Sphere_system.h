@@ -54,6 +54,15 @@ struct Sphere_system
   std::size_t degree(std::size_t i) const { return offsets[i + 1] - offsets[i]; }
 };
 
+// Whether every weight is positive (Tutte's, admissible ones, cotangent weights of a Delaunay mesh).
+inline bool has_positive_weights(const Sphere_system& system)
+{
+  for(double w : system.weights)
+    if(!(w > 0.))
+      return false;
+  return true;
+}
+
 // Builds the counter-clockwise rings of the triangles on `n` vertices, and keeps the triangles: the system is where
 // they are stored from here on (the pipeline moves them in). Requires a closed, oriented, vertex-manifold triangle
 // mesh (one that passed check_mesh_arrays(): the callers check the input first, so a violation here is a bug, not a

@@ -21,7 +21,7 @@ namespace internal {
 struct Solver_tuning
 {
   // --- The multilevel start (spherical_parameterize.h) ---
-  // Meshes from this many vertices on start from a coarser mesh (uniform weights, global solver).
+  // Meshes from this many vertices on start from a coarser mesh (symmetric positive weights, global solver).
   std::size_t multilevel_min_vertices = 20000;
   // Of 1/2, 1/4, 1/8 of the vertices and 3, 10 smoothing sweeps, 1/4 with 10 sweeps was the most even on bunny00 and
   // armadillo Loop x2 (1/2 took 52 steps on bunny00 once); 30 or 60 sweeps did not lower the Newton steps.

@@ -126,10 +126,7 @@ inline Iteration_report mobius_newton(Sphere_state& state, const Iteration_optio
   // The preconditioner is the weights' graph Laplacian, a good model of the Jacobian when every weight is positive
   // (Tutte's, mean value made admissible, cotangent on Delaunay meshes); with negative cotangent weights MINRES
   // needed hundreds of iterations per step (c3d_igea: 2,973 in 22 steps, 197 s against 48 s factorized).
-  bool positive_weights = true;
-  for(double w : system.weights)
-    positive_weights = positive_weights && w > 0.;
-  const bool iterative = allow_folds && positive_weights && n >= tuning.iterative_newton_min_vertices;
+  const bool iterative = allow_folds && has_positive_weights(system) && n >= tuning.iterative_newton_min_vertices;
   const bool parallel = options.parallel && n >= tuning.side_by_side_min_vertices; // side_by_side.h
   Tangent_krylov_system krylov(system, iterative && options.preconditioner_ahead != nullptr
                                            ? options.preconditioner_ahead->get(system)
