@@ -135,9 +135,10 @@ CGAL_SPHERICAL_PARAMETERIZATION_NAMED_PARAMETER(nonlinear_solver)
 /// may be negative) and mean-value weights (not symmetric) in general do not. `Result::raised_weights` counts the
 /// edges raised.
 CGAL_SPHERICAL_PARAMETERIZATION_NAMED_PARAMETER(admissible_weights)
-/// `true` (default): on meshes of `multilevel_min_vertices` vertices or more with symmetric positive weights (uniform,
-/// admissible, or the user's or cotangent weights when all positive) and the global Newton solver, start from a
-/// coarser mesh (half-edge collapses) solved first with Tutte's weights, its map carried back to the input mesh,
+/// `true` (default): with the global Newton solver, on meshes of 20,000 vertices or more with uniform weights and of
+/// 200 or more with other symmetric positive weights (admissible, or the user's or cotangent weights when all
+/// positive), start from a coarser mesh (half-edge collapses) solved first with Tutte's weights, its map carried back
+/// to the input mesh,
 /// instead of the paper's two-disk guess (used on the coarsest mesh, and as the fallback). `false`: the paper's
 /// stage 1 on the input mesh.
 CGAL_SPHERICAL_PARAMETERIZATION_NAMED_PARAMETER(multilevel)

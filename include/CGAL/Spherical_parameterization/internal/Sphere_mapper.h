@@ -174,11 +174,14 @@ private:
   // multilevel_fallback_min_vertices, not only from multilevel_min_vertices on: its two-disk guess is the slower
   // start there (CGAL's man.off refined once: its levels of 17,493 and 4,373 vertices spent 3.4 s of 6.8 on their two
   // disks before their own coarser levels solved them; 3.7 s in all through the levels).
+  // Symmetric positive weights other than Tutte's go multilevel first from Solver_tuning::
+  // multilevel_min_vertices_other_weights on.
   bool multilevel_applies() const
   {
     const Solver_tuning& tuning = m_options.iterations.tuning;
-    const std::size_t min_vertices =
-        m_options.coarse_level ? tuning.multilevel_fallback_min_vertices : tuning.multilevel_min_vertices;
+    const std::size_t min_vertices = m_options.coarse_level       ? tuning.multilevel_fallback_min_vertices
+                                     : has_tutte_weights(m_system) ? tuning.multilevel_min_vertices
+                                                                   : tuning.multilevel_min_vertices_other_weights;
     return m_options.multilevel && multilevel_weights() && m_options.nonlinear_solver == Nonlinear_solver::GLOBAL_NEWTON
            && m_system.number_of_vertices >= min_vertices && m_options.iterations.max_newton_sweeps > 0;
   }
