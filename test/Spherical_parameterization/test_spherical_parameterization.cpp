@@ -1013,7 +1013,7 @@ TEST(MultilevelStart, ConvergesAndReportsItsLevels)
 TEST(MultilevelStart, TakesOtherSymmetricPositiveWeights)
 {
   Mesh mesh = read_mesh(shared_meshes + "/brainspace_conte69_32k_lh.off");
-  ASSERT_GE(num_vertices(mesh), SPI::Solver_tuning().multilevel_min_vertices);
+  ASSERT_GE(num_vertices(mesh), SPI::Solver_tuning().multilevel_min_vertices_other_weights);
   auto sphere = mesh.add_property_map<Mesh::Vertex_index, Point>("v:sphere", Point()).first;
   const SP::Result result = SP::spherical_parameterize(
       mesh, sphere,

@@ -191,8 +191,8 @@ private:
   // balanced map exists. Its coarser levels are solved with Tutte's weights, whatever the weights of the mesh given:
   // they are a mere start, and each level's map carried back is close to Tutte's map there, which its Newton steps
   // reach robustly. The mesh given then goes from that map to the balanced map of its own weights. With admissible
-  // weights, 61 of the 66 meshes converge instead of 57 (cotangent) and 64 instead of 62 (mean value), in half the
-  // time or less (the manual's Method section has the figures). Coarser levels with the same kind of weights
+  // weights, 62 of the 66 meshes converge instead of 57 (cotangent) and 64 instead of 62 (mean value), in a third of
+  // the time or less (the manual's Method section has the figures). Coarser levels with the same kind of weights
   // computed on their own geometry failed (a collapsed mesh's cotangent weights, raised where negative, are far from
   // the fine mesh's: bigbrain's levels ended unconverged, 68 s).
   bool multilevel_weights() const { return m_system.symmetric && has_positive_weights(m_system); }

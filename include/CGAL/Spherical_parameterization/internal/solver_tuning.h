@@ -21,7 +21,7 @@ namespace internal {
 struct Solver_tuning
 {
   // --- The multilevel start (spherical_parameterize.h) ---
-  // Meshes from this many vertices on start from a coarser mesh (symmetric positive weights, global solver).
+  // Meshes from this many vertices on start from a coarser mesh (Tutte's weights, global solver).
   std::size_t multilevel_min_vertices = 20000;
   // The same for symmetric positive weights other than Tutte's (admissible ones, the user's): their coarser levels are
   // solved with Tutte's weights, and their two-disk path is the slower and less reliable from a few hundred vertices
