@@ -129,7 +129,7 @@ void print_usage(std::ostream& out)
          "                        S > 0 (default: none); then the best map so far is written (exit 1)\n"
          "      --seed N          METIS seed, an integer (default 0); the same seed gives the same output\n"
          "      --start S         where the iterations start (global solver; uniform weights from 20,000\n"
-         "                        vertices, --admissible-weights and positive cotangent weights from 200):\n"
+         "                        vertices, cotangent and --admissible-weights from 200):\n"
          "                        multilevel (default: a coarser mesh solved first, its map carried back) or\n"
          "                        two_disks (the paper's initial guess on the mesh itself)\n"
          "      --verbose         the library's figures of every stage and level on stderr\n"

@@ -1028,6 +1028,32 @@ TEST(MultilevelStart, TakesOtherSymmetricPositiveWeights)
   EXPECT_EQ(result.levels.back().newton_steps, result.newton.iterations);
 }
 
+// Plain cotangent weights, negative ones included, go through Tutte's levels too, and on the mesh given Newton's
+// steps solve by MINRES from the map carried back (10,242 vertices: above iterative_newton_min_vertices). Both fail
+// on the code before 2026-11-27, where these weights started from their two disks with factorized steps.
+TEST(MultilevelStart, TakesCotangentWeightsWithNegativeOnes)
+{
+  for(const std::string& path : {cgal_data + "/homer.off", shared_meshes + "/nilearn_fsavg5_pial_left.off"})
+  {
+    SCOPED_TRACE(path);
+    Mesh mesh = read_mesh(path);
+    ASSERT_GE(num_vertices(mesh), SPI::Solver_tuning().multilevel_min_vertices_other_weights);
+    ASSERT_FALSE(SPI::has_positive_weights(system_of(arrays_of(mesh), SP::Weighting::COTANGENT)));
+    auto sphere = mesh.add_property_map<Mesh::Vertex_index, Point>("v:sphere", Point()).first;
+    const SP::Result result = SP::spherical_parameterize(
+        mesh, sphere,
+        SP::parameters::combine(SP::parameters::weighting(SP::Weighting::COTANGENT), SP::parameters::max_seconds(120.)));
+    ASSERT_EQ(result.status, SP::Error_code::OK) << result.message;
+    EXPECT_FALSE(result.admissible_weights);
+    EXPECT_LE(result.max_imbalance, 1e-6);
+    EXPECT_TRUE(exact_certificate(mesh, sphere).bijective());
+    ASSERT_GE(result.levels.size(), 2u) << "no multilevel start for cotangent weights";
+    EXPECT_EQ(result.levels.back().vertices, num_vertices(mesh));
+    if(num_vertices(mesh) >= SPI::Solver_tuning().iterative_newton_min_vertices)
+      EXPECT_GT(result.newton.linear_iterations, 0u) << "factorized steps on the mesh given";
+  }
+}
+
 // Cotangent weights made admissible (symmetric, positive) on cow: Newton alone gives up, the continuation from
 // Tutte's weights reaches their solution. Plain cotangent weights on triceratops: the path of solutions ends early.
 TEST(WeightContinuation, FromTutteWeights)

@@ -136,9 +136,9 @@ CGAL_SPHERICAL_PARAMETERIZATION_NAMED_PARAMETER(nonlinear_solver)
 /// edges raised.
 CGAL_SPHERICAL_PARAMETERIZATION_NAMED_PARAMETER(admissible_weights)
 /// `true` (default): with the global Newton solver, on meshes of 20,000 vertices or more with uniform weights and of
-/// 200 or more with other symmetric positive weights (admissible, or the user's or cotangent weights when all
-/// positive), start from a coarser mesh (half-edge collapses) solved first with Tutte's weights, its map carried back
-/// to the input mesh, instead of the paper's two-disk guess (used on the coarsest mesh, and as the fallback).
+/// 200 or more with other symmetric weights (cotangent, of either sign; admissible; the user's, if symmetric), start
+/// from a coarser mesh (half-edge collapses) solved first with Tutte's weights, its map carried back to the input
+/// mesh, instead of the paper's two-disk guess (used on the coarsest mesh, and as the fallback).
 /// `false`: the paper's stage 1 on the input mesh.
 CGAL_SPHERICAL_PARAMETERIZATION_NAMED_PARAMETER(multilevel)
 /// `true`: symmetric weights other than Tutte's (cotangent) whose balanced maps, followed from Tutte's weights, end

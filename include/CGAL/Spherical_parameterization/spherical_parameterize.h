@@ -129,8 +129,8 @@ using Sparse_LU_disk_solver_traits = internal::Sparse_LU_solver_traits;
 ///   \cgalParamNEnd
 ///   \cgalParamNBegin{multilevel}
 ///     \cgalParamDescription{with the global solver, on meshes of 20,000 vertices or more with uniform weights and of
-///                           200 or more with other symmetric positive weights (admissible, or the user's or
-///                           cotangent weights when all positive), start from a coarser mesh (half-edge collapses to a
+///                           200 or more with other symmetric weights (cotangent, of either sign; admissible;
+///                           the user's, if symmetric), start from a coarser mesh (half-edge collapses to a
 ///                           quarter of the vertices, recursively) solved first with Tutte's weights, its map carried
 ///                           back, instead of the paper's two-disk guess on the mesh itself (which the coarsest level
 ///                           uses, and which is the fallback); `Result::levels` reports the levels}

@@ -186,16 +186,22 @@ private:
            && m_system.number_of_vertices >= min_vertices && m_options.iterations.max_newton_sweeps > 0;
   }
 
-  // The weights the multilevel start is for: symmetric and positive, the theory's case (Tutte's; cotangent or mean-value
-  // weights made admissible; cotangent weights that are all positive; the user's, if so), for which a bijective
-  // balanced map exists. Its coarser levels are solved with Tutte's weights, whatever the weights of the mesh given:
+  // The weights the multilevel start is for: symmetric ones (Tutte's; cotangent weights, of either sign; cotangent or
+  // mean-value weights made admissible; the user's, if symmetric). Its coarser levels are solved with Tutte's weights,
+  // whatever the weights of the mesh given:
   // they are a mere start, and each level's map carried back is close to Tutte's map there, which its Newton steps
   // reach robustly. The mesh given then goes from that map to the balanced map of its own weights. With admissible
   // weights, 62 of the 66 meshes converge instead of 57 (cotangent) and 64 instead of 62 (mean value), in a third of
   // the time or less (the manual's Method section has the figures). Coarser levels with the same kind of weights
   // computed on their own geometry failed (a collapsed mesh's cotangent weights, raised where negative, are far from
   // the fine mesh's: bigbrain's levels ended unconverged, 68 s).
-  bool multilevel_weights() const { return m_system.symmetric && has_positive_weights(m_system); }
+  // Cotangent weights with negative ones (every mesh of the 66 has some) went this way too from 2026-11-27: 49 of the
+  // 66 converge instead of 45 (c3d_igea, oded_hammer, oded_koala, brainspace_conte69_32k), in 382 s in all instead of
+  // 483 s (a 30 s budget each); homer 0.17 s instead of 13 s, bunny00 1.1 s instead of 3.2 s. Where this mesh's
+  // Newton steps fail from the map carried back, its two disks follow as before (fandisk_large: 10.7 s instead of
+  // 1.6 s). Their balanced map need not be bijective, nor unique: a map balanced from another start may differ
+  // (fandisk: angle error 1.54 degrees instead of 1.37, both balanced and bijective).
+  bool multilevel_weights() const { return m_system.symmetric; }
 
   // Below multilevel_min_vertices the two-disk path comes first (faster there on most meshes); where it ends
   // unconverged, the multilevel start is tried too: its coarser level carries the global shape that Newton's steps from

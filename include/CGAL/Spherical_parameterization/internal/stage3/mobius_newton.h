@@ -124,9 +124,15 @@ inline Iteration_report mobius_newton(Sphere_state& state, const Iteration_optio
   // The full-step phase on large meshes solves iteratively; the bijectivity-preserving steps keep the factorization,
   // whose gauge they were tuned with (see Tangent_newton_system::solve).
   // The preconditioner is the weights' graph Laplacian, a good model of the Jacobian when every weight is positive
-  // (Tutte's, mean value made admissible, cotangent on Delaunay meshes); with negative cotangent weights MINRES
-  // needed hundreds of iterations per step (c3d_igea: 2,973 in 22 steps, 197 s against 48 s factorized).
-  const bool iterative = allow_folds && has_positive_weights(system) && n >= tuning.iterative_newton_min_vertices;
+  // (Tutte's, mean value made admissible, cotangent on Delaunay meshes). With negative cotangent weights MINRES
+  // needed hundreds of iterations per step from the two-disk guess (c3d_igea: 2,973 in 22 steps, 197 s against 48 s
+  // factorized), but few from a map carried back from a coarser level (Boost_aim::ROOT), which is close to the
+  // solution on most meshes (bunny00: 44 in 5 steps, 0.46 s, where a factorized step alone takes 0.3 s). There, where
+  // MINRES does not reach its forcing within its cap, or its step is rejected at the smallest forcing, the rest of
+  // the phase factorizes (the exact steps).
+  const bool positive_weights = has_positive_weights(system);
+  bool iterative = allow_folds && n >= tuning.iterative_newton_min_vertices
+                   && (positive_weights || boost_aim == Boost_aim::ROOT);
   const bool parallel = options.parallel && n >= tuning.side_by_side_min_vertices; // side_by_side.h
   Tangent_krylov_system krylov(system, iterative && options.preconditioner_ahead != nullptr
                                            ? options.preconditioner_ahead->get(system)
@@ -217,6 +223,17 @@ inline Iteration_report mobius_newton(Sphere_state& state, const Iteration_optio
         state.assign(trial, !allow_folds && options.preserve_bijectivity);
         residual = driver.measure().residual;
         ++counts.newton_steps;
+      }
+    }
+    if(iterative && !positive_weights
+       && (krylov.last_iterations() >= tuning.newton_max_minres_iterations
+           || (accepted_t == 0. && forcing <= tuning.newton_min_forcing)))
+    {
+      iterative = false;
+      if(accepted_t == 0.)
+      {
+        driver.count_retry(); // the same point again, with the factorized step
+        continue;
       }
     }
     if(iterative)
