@@ -1054,6 +1054,38 @@ TEST(MultilevelStart, TakesCotangentWeightsWithNegativeOnes)
   }
 }
 
+// On a level of the multilevel start (Boost_aim::ROOT), negative cotangent weights solve by MINRES; where MINRES
+// reaches its cap, the rest of the phase factorizes. Here from Tutte's balanced map of the mesh itself (what a level
+// carried back is close to), with the default cap and with a cap of one iteration, which the first solve reaches.
+TEST(MultilevelStart, NegativeWeightsFactorizeWhereMinresReachesItsCap)
+{
+  Mesh mesh = read_mesh(shared_meshes + "/nilearn_fsavg5_pial_left.off");
+  auto tutte = mesh.add_property_map<Mesh::Vertex_index, Point>("v:tutte", Point()).first;
+  ASSERT_EQ(SP::spherical_parameterize(mesh, tutte).status, SP::Error_code::OK);
+  const SPI::Mesh_arrays arrays = arrays_of(mesh);
+  const SPI::Sphere_system system = system_of(arrays, SP::Weighting::COTANGENT);
+  ASSERT_FALSE(SPI::has_positive_weights(system));
+  ASSERT_GE(system.number_of_vertices, SPI::Solver_tuning().iterative_newton_min_vertices);
+  std::vector<SPI::Vector3> start;
+  for(Mesh::Vertex_index v : vertices(mesh))
+    start.emplace_back(tutte[v].x(), tutte[v].y(), tutte[v].z());
+  for(int cap : {SPI::Solver_tuning().newton_max_minres_iterations, 1})
+  {
+    SCOPED_TRACE(cap);
+    std::vector<SPI::Vector3> x = start;
+    SPI::Sphere_state state(system, x);
+    SPI::Iteration_options options;
+    options.tuning.newton_max_minres_iterations = cap;
+    const SPI::Iteration_report report =
+        SPI::full_newton_steps(state, options, started_timer(), SPI::Boost_aim::ROOT);
+    EXPECT_TRUE(report.converged);
+    EXPECT_TRUE(SPI::certify(system.triangles, x).bijective);
+    EXPECT_GE(report.linear_iterations, 1u) << "factorized from the start";
+    if(cap == 1) // one capped solve per phase of full steps (RESIDUAL, then IMBALANCE if the first fails)
+      EXPECT_LE(report.linear_iterations, 2u) << "MINRES went on after reaching its cap";
+  }
+}
+
 // Cotangent weights made admissible (symmetric, positive) on cow: Newton alone gives up, the continuation from
 // Tutte's weights reaches their solution. Plain cotangent weights on triceratops: the path of solutions ends early.
 TEST(WeightContinuation, FromTutteWeights)

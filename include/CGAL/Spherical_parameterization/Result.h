@@ -32,7 +32,7 @@ struct Stage_statistics
   double seconds = 0.;               ///< Wall-clock time of the stage.
   double residual = -1.;             ///< The paper's `Res` at the end of the stage (-1 when not computed).
   std::size_t linear_iterations = 0; ///< Stage 3: MINRES iterations of Newton's iterative linear solves (0 when
-                                     ///< the systems were factorized).
+                                     ///< every system was factorized).
 };
 
 /// \ingroup PkgSphericalParameterizationRef

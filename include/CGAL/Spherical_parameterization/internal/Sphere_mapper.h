@@ -174,8 +174,8 @@ private:
   // multilevel_fallback_min_vertices, not only from multilevel_min_vertices on: its two-disk guess is the slower
   // start there (CGAL's man.off refined once: its levels of 17,493 and 4,373 vertices spent 3.4 s of 6.8 on their two
   // disks before their own coarser levels solved them; 3.7 s in all through the levels).
-  // Symmetric positive weights other than Tutte's go multilevel first from Solver_tuning::
-  // multilevel_min_vertices_other_weights on.
+  // Symmetric weights other than Tutte's (cotangent of either sign, admissible ones, the user's) go multilevel first
+  // from Solver_tuning::multilevel_min_vertices_other_weights on.
   bool multilevel_applies() const
   {
     const Solver_tuning& tuning = m_options.iterations.tuning;

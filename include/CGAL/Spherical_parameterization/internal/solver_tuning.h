@@ -61,7 +61,8 @@ struct Solver_tuning
   std::size_t side_by_side_min_vertices = 10000;
   // Inexact Newton (Eisenstat and Walker's second forcing term): the linear residual is reduced by
   // eta_k = 0.9 (Res_k / Res_{k-1})^2 within these bounds (looser steps, 0.1 or 0.3, wander on igea and man). A step
-  // the line search rejects is solved again with the smallest forcing before the phase gives up.
+  // the line search rejects is solved again with the smallest forcing before the phase gives up (negative weights:
+  // before the rest of the phase factorizes).
   double newton_max_forcing = 1e-2;
   double newton_min_forcing = 1e-8;
   // When the step can be the last one (mobius_newton.h, last_step_forcing), the forcing is at most this over the
@@ -69,7 +70,8 @@ struct Solver_tuning
   // that MINRES reached, so a hundredth leaves a margin, for 3 to 7 more MINRES iterations.
   double newton_last_step_forcing = 1e-2;
   // Uniform weights take 2 to 20 MINRES iterations at the forcing, about 60 at the smallest one; an iterate of
-  // MINRES stopped early is still a descent step, and the line search judges it.
+  // MINRES stopped early is still a descent step, and the line search judges it. With negative weights (from a map
+  // carried back), reaching the cap makes the rest of the phase factorize.
   int newton_max_minres_iterations = 200;
 
   // --- Newton's steps (mobius_newton.h, global_newton.h) ---

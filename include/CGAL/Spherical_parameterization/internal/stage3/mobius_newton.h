@@ -175,8 +175,10 @@ inline Iteration_report mobius_newton(Sphere_state& state, const Iteration_optio
     bool has_step = false;
     if(iterative)
     {
-      has_step = krylov.assemble(x) && krylov.solve(step, forcing, tuning.newton_max_minres_iterations);
-      counts.linear_iterations += static_cast<std::size_t>(krylov.last_iterations());
+      const bool assembled = krylov.assemble(x);
+      has_step = assembled && krylov.solve(step, forcing, tuning.newton_max_minres_iterations);
+      if(assembled) // otherwise last_iterations() is the previous solve's
+        counts.linear_iterations += static_cast<std::size_t>(krylov.last_iterations());
     }
     else
     {
