@@ -1955,6 +1955,73 @@ TEST(SphericalParameterize, NoBalancedSolutionClearStatusAndCertifiedFallbackMap
   }
 }
 
+// The tetrahedron has a balanced bijective map exactly for weights w_ij = u_i u_j (one sign) whose u_i are each
+// below the sum of the others (inscribability.h). Where they are not, the verdict is a proof, without iterations; where
+// they are, the map is found and balanced for exactly those weights. Either way the map is certified bijective.
+TEST(Inscribability, TetrahedronWeightsDecideTheBalancedMap)
+{
+  const Mesh mesh = to_mesh(tetrahedron());
+  // Weights w_ij = u_i u_j, except edge 0-1's when `edge01` is a number.
+  const double keep = std::numeric_limits<double>::quiet_NaN();
+  auto run = [&](const std::array<double, 4>& u, double edge01, std::string& message) {
+    Mesh m = mesh;
+    auto weight = m.add_property_map<Mesh::Halfedge_index, double>("h:w").first;
+    for(Mesh::Halfedge_index h : m.halfedges())
+    {
+      const std::size_t i = std::size_t(m.source(h)), j = std::size_t(m.target(h));
+      const bool edge_01 = (i == 0 && j == 1) || (i == 1 && j == 0);
+      weight[h] = edge_01 && !std::isnan(edge01) ? edge01 : u[i] * u[j];
+    }
+    std::map<Mesh::Vertex_index, Point> positions;
+    auto sphere = boost::make_assoc_property_map(positions);
+    const SP::Result result = SP::spherical_parameterize(m, sphere, SP::parameters::halfedge_weight_map(weight));
+    message = result.message;
+    EXPECT_EQ(positions.size(), 4u);
+    EXPECT_TRUE(exact_certificate(m, sphere).bijective()) << result.message;
+    EXPECT_EQ(result.bijective, exact_certificate(m, sphere).bijective());
+    if(result.status == SP::Error_code::OK)
+    {
+      // Balanced for exactly these weights: sum_j w_ij x_j parallel to x_i at every vertex.
+      for(Mesh::Vertex_index v : m.vertices())
+      {
+        Kernel::Vector_3 pull(0, 0, 0);
+        for(Mesh::Halfedge_index h : halfedges_around_target(m.halfedge(v), m))
+          pull = pull + weight[h] * (sphere[m.source(h)] - CGAL::ORIGIN);
+        const Kernel::Vector_3 xi = sphere[v] - CGAL::ORIGIN;
+        const Kernel::Vector_3 tangential = pull - (pull * xi) * xi;
+        EXPECT_LT(std::sqrt(tangential.squared_length()), 1e-6 * std::sqrt(pull.squared_length()));
+      }
+    }
+    else if(result.initial_flipped_faces == 0) // otherwise capped sweeps repair the initial guess
+      EXPECT_EQ(result.gauss_seidel.iterations + result.newton.iterations, 0u) << result.message;
+    return result.status;
+  };
+  std::string message;
+  // Of rank one, each u_i below the sum of the others: balanced and certified.
+  EXPECT_EQ(run({1., 1.2, 0.9, 1.1}, keep, message), SP::Error_code::OK) << message;
+  EXPECT_EQ(run({2.5, 1., 1., 0.8}, keep, message), SP::Error_code::OK) << message;
+  // u_0 above the sum of the others.
+  EXPECT_EQ(run({3., 1., 1., 0.9}, keep, message), SP::Error_code::NO_BALANCED_SOLUTION) << message;
+  EXPECT_NE(message.find("above the sum of the others"), std::string::npos) << message;
+  // Not of rank one: the products of the opposite edges' weights differ.
+  EXPECT_EQ(run({1., 1., 1., 1.}, 2., message), SP::Error_code::NO_BALANCED_SOLUTION) << message;
+  EXPECT_NE(message.find("products of the weights of opposite edges"), std::string::npos) << message;
+  // A negative weight.
+  EXPECT_EQ(run({1., 1., 1., 1.}, -0.5, message), SP::Error_code::NO_BALANCED_SOLUTION) << message;
+  EXPECT_NE(message.find("of one sign"), std::string::npos) << message;
+  // CGAL's tetrahedron.off (a corner of a cube) with cotangent weights: u = (1.86, 0.54, 0.54, 0.54).
+  Mesh corner = read_mesh(cgal_data + "/tetrahedron.off");
+  std::map<Mesh::Vertex_index, Point> positions;
+  auto sphere = boost::make_assoc_property_map(positions);
+  const SP::Result cotangent =
+      SP::spherical_parameterize(corner, sphere, SP::parameters::weighting(SP::Weighting::COTANGENT));
+  EXPECT_EQ(cotangent.status, SP::Error_code::NO_BALANCED_SOLUTION) << cotangent.message;
+  EXPECT_TRUE(exact_certificate(corner, sphere).bijective());
+  // Uniform weights: u = (1, 1, 1, 1), the regular tetrahedron.
+  const SP::Result uniform = SP::spherical_parameterize(corner, sphere);
+  EXPECT_EQ(uniform.status, SP::Error_code::OK) << uniform.message;
+}
+
 TEST(ProgressCallback, FollowsTheStagesAndCancels)
 {
   const Mesh mesh = read_mesh(cgal_data + "/triceratops.off");

@@ -38,7 +38,9 @@ enum class Error_code
   NOT_BIJECTIVE,        ///< The convergence test holds but the map is not bijective: some spherical triangles are not
                         ///< positively oriented, or, with every one positive, the map does not have degree 1 (a
                         ///< generic point covered more than once, or signed areas that do not add up to 4 pi).
-  NO_BALANCED_SOLUTION, ///< The connectivity is not inscribable: no bijective solution exists for positive weights.
+  NO_BALANCED_SOLUTION, ///< Proven: no bijective balanced map exists (a connectivity that is not inscribable, for
+                        ///< any positive weights; or a tetrahedron whose weights are not of the one form that has
+                        ///< one).
   CANCELLED             ///< The `progress_callback` asked to stop.
 };
 
@@ -75,7 +77,8 @@ inline constexpr Error_code_text error_code_texts[] = {
     {Error_code::NOT_BIJECTIVE, "NOT_BIJECTIVE",
      "The map converged but is not bijective (a triangle not positively oriented, or a degree other than 1)"},
     {Error_code::NO_BALANCED_SOLUTION, "NO_BALANCED_SOLUTION",
-     "The connectivity is not inscribable: the balance equations have no bijective solution for positive weights"},
+     "Proven: the balance equations have no bijective solution (a connectivity that is not inscribable has none for "
+     "positive weights; a tetrahedron has none for most weights)"},
     {Error_code::CANCELLED, "CANCELLED", "Cancelled by the progress callback"},
 };
 

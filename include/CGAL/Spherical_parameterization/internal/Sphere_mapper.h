@@ -471,7 +471,10 @@ private:
     // succeed, so the initial guess (bijective by construction in all but rare cases) is the answer; a few
     // bijectivity-preserving iterations only serve to repair it if some of its triangles are not positive.
     m_inscribability = check_inscribability(m_system);
-    m_no_balanced_solution = has_positive_weights(m_system) && m_inscribability.proven_not_inscribable;
+    // The tetrahedron's proof is about the weights given: with hold_weights the map may be balanced for held ones.
+    m_tetrahedron = m_options.hold_weights ? Tetrahedron_weights_check() : check_tetrahedron_weights(m_system);
+    m_no_balanced_solution = (has_positive_weights(m_system) && m_inscribability.proven_not_inscribable)
+                             || m_tetrahedron.proven_no_balanced_map;
     // Non-symmetric weights (mean value) have no exact solution in general: with the imbalance test their iterations
     // stop on the stationarity of the least-squares problem instead (summarize_stationarity).
     if(m_no_balanced_solution)
@@ -660,12 +663,16 @@ private:
     if(m_no_balanced_solution)
     {
       std::ostringstream details;
-      details << " (proof: " << m_inscribability.independent_set_size << " of the " << m_system.number_of_vertices
-              << " vertices are pairwise non-adjacent"
-              << (2 * m_inscribability.independent_set_size == m_system.number_of_vertices
-                      ? " and two of the others are adjacent"
-                      : "")
-              << "). The map returned is the initial guess (two Tutte disks, "
+      if(m_tetrahedron.proven_no_balanced_map)
+        details << " (proof, a tetrahedron: " << m_tetrahedron.reason << ")";
+      else
+        details << " (proof: " << m_inscribability.independent_set_size << " of the " << m_system.number_of_vertices
+                << " vertices are pairwise non-adjacent"
+                << (2 * m_inscribability.independent_set_size == m_system.number_of_vertices
+                        ? " and two of the others are adjacent"
+                        : "")
+                << ")";
+      details << ". The map returned is the initial guess (two Tutte disks, "
               << "Moebius inversion, stereographic projection)"
               << (certificate.bijective
                       ? ", certified bijective"
@@ -703,6 +710,7 @@ private:
   bool m_cancelled = false;
   bool m_no_balanced_solution = false; // proven: no bijective balanced map exists (m_inscribability)
   Inscribability_check m_inscribability;
+  Tetrahedron_weights_check m_tetrahedron;
   Iteration_report m_newton;
   double m_multilevel_newton_seconds = 0.;
   bool m_multilevel_tried = false; // the multilevel start came first (multilevel_applies): no fallback to it

@@ -5,7 +5,8 @@
 //
 // Author(s)     : CGAL Spherical Parameterization contributors
 
-// A combinatorial proof that a triangulated sphere is not inscribable, when a simple one exists.
+// A combinatorial proof that a triangulated sphere is not inscribable, when a simple one exists; and, for the
+// tetrahedron, the exact condition on the weights for a balanced bijective map.
 //
 // The paper (Section 2) notes that for a non-inscribable connectivity the balance equations have no bijective
 // solution for any positive weights: the iterations can only stall. Rivin's characterization gives a cheap
@@ -21,8 +22,11 @@
 #include <CGAL/Spherical_parameterization/internal/Sphere_system.h>
 
 #include <algorithm>
+#include <cmath>
 #include <cstddef>
 #include <numeric>
+#include <sstream>
+#include <string>
 #include <vector>
 
 namespace CGAL {
@@ -67,6 +71,76 @@ inline Inscribability_check check_inscribability(const Sphere_system& system)
   }
   const std::size_t twice = 2 * check.independent_set_size;
   check.proven_not_inscribable = twice > n || (twice == n && check.edge_outside_set);
+  return check;
+}
+
+// The tetrahedron (the one closed triangulated sphere of 4 vertices, every pair adjacent) has a balanced bijective
+// map for exactly the symmetric weights of one form, which cotangent weights do not have in general.
+//
+// Balanced means M X = 0, with X the 4 x 3 matrix of the positions and M = diag(alpha) - W, W the raw weights
+// (the tangential part of sum_j w_ij x_j vanishes at every vertex: sum_j w_ij x_j = alpha_i x_i, alpha_i of either
+// sign). A bijective map of the tetrahedron has four positions spanning space around the origin, so X has rank 3
+// and its one linear dependency sum_i u_i x_i = 0 has coefficients of one sign (the origin is inside their hull).
+// Then M has rank 1, M = s u u^T, and its off-diagonal entries -w_ij = s u_i u_j: the six weights are nonzero, of
+// one sign, and of rank one, w_01 w_23 = w_02 w_13 = w_03 w_12, with |u_i| = sqrt(w_ij w_ik / w_jk). The unit
+// vectors x_i with sum_i u_i x_i = 0 not in a plane (a closed, non-planar quadrilateral of sides u_i) exist if and
+// only if each u_i is smaller than the sum of the other three. Conversely, such a quadrilateral is a balanced
+// bijective map (reflected if its orientation is the mesh's opposite). Where a condition fails by more than
+// `margin` (relatively: rounding of the products is far below it), no balanced bijective map exists.
+struct Tetrahedron_weights_check
+{
+  bool proven_no_balanced_map = false;
+  std::string reason; // which condition fails, with its figures
+};
+
+inline Tetrahedron_weights_check check_tetrahedron_weights(const Sphere_system& system, double margin = 1e-6)
+{
+  Tetrahedron_weights_check check;
+  if(system.number_of_vertices != 4 || !system.symmetric || system.neighbors.size() != 12)
+    return check;
+  double w[4][4] = {};
+  for(std::size_t i = 0; i < 4; ++i)
+    for(std::size_t k = system.offsets[i]; k < system.offsets[i + 1]; ++k)
+      w[i][std::size_t(system.neighbors[k])] = system.weights[k] * system.row_sums[i];
+  std::ostringstream reason;
+  const double sign = w[0][1] < 0. ? -1. : 1.;
+  for(std::size_t i = 0; i < 4; ++i)
+    for(std::size_t j = i + 1; j < 4; ++j)
+      if(!(sign * w[i][j] > 0.))
+      {
+        reason << "the weight of edge " << i << "-" << j << " is " << w[i][j] << ", that of edge 0-1 " << w[0][1]
+               << ": the six weights of a balanced tetrahedron are nonzero and of one sign";
+        check.proven_no_balanced_map = true;
+        check.reason = reason.str();
+        return check;
+      }
+  const double p[3] = {w[0][1] * w[2][3], w[0][2] * w[1][3], w[0][3] * w[1][2]};
+  const double largest = std::max({p[0], p[1], p[2]}), smallest = std::min({p[0], p[1], p[2]});
+  if(largest - smallest > margin * largest)
+  {
+    reason << "the products of the weights of opposite edges differ (w01 w23 = " << p[0] << ", w02 w13 = " << p[1]
+           << ", w03 w12 = " << p[2] << "): a balanced tetrahedron needs them equal";
+    check.proven_no_balanced_map = true;
+    check.reason = reason.str();
+    return check;
+  }
+  double u[4];
+  for(std::size_t i = 0; i < 4; ++i)
+  {
+    const std::size_t j = (i + 1) % 4, k = (i + 2) % 4;
+    u[i] = std::sqrt(std::abs(w[i][j] * w[i][k] / w[j][k]));
+  }
+  const double total = u[0] + u[1] + u[2] + u[3];
+  for(std::size_t i = 0; i < 4; ++i)
+    if(u[i] - (total - u[i]) > margin * total)
+    {
+      reason << "the balanced positions x_i satisfy sum_i u_i x_i = 0 with u = (" << u[0] << ", " << u[1] << ", "
+             << u[2] << ", " << u[3] << "): no unit vectors do, with u_" << i << " = " << u[i]
+             << " above the sum of the others (" << total - u[i] << ")";
+      check.proven_no_balanced_map = true;
+      check.reason = reason.str();
+      return check;
+    }
   return check;
 }
 
