@@ -1060,6 +1060,29 @@ TEST(MultilevelStart, TakesCotangentWeightsWithNegativeOnes)
   }
 }
 
+// Mean-value weights (not symmetric) never start multilevel, but where their least-squares iterations from the two
+// disks end not stationary, they start again from Tutte's levels: CGAL's oblong.off (422 vertices) is stationary that
+// way, and was not before 2026-11-26 (max imbalance 0.90 where the barrier phases ended).
+TEST(MultilevelStart, MeanValueWeightsFallBackToTheLevels)
+{
+  Mesh mesh = read_mesh(cgal_data + "/oblong.off");
+  ASSERT_GE(num_vertices(mesh), SPI::Solver_tuning().multilevel_fallback_min_vertices);
+  ASSERT_FALSE(system_of(arrays_of(mesh), SP::Weighting::MEAN_VALUE).symmetric);
+  auto sphere = mesh.add_property_map<Mesh::Vertex_index, Point>("v:sphere", Point()).first;
+  const SP::Result result = SP::spherical_parameterize(
+      mesh, sphere,
+      SP::parameters::combine(SP::parameters::weighting(SP::Weighting::MEAN_VALUE),
+                              SP::parameters::max_seconds(120.)));
+  ASSERT_EQ(result.status, SP::Error_code::OK) << result.message;
+  EXPECT_TRUE(result.multilevel_fallback);
+  EXPECT_GE(result.max_stationarity, 0.);
+  EXPECT_LE(result.max_stationarity, 1e-6);
+  EXPECT_EQ(result.unstationary_vertices, 0u);
+  EXPECT_TRUE(exact_certificate(mesh, sphere).bijective());
+  ASSERT_GE(result.levels.size(), 2u) << "no multilevel start";
+  EXPECT_EQ(result.levels.back().vertices, num_vertices(mesh));
+}
+
 // On a level of the multilevel start (Boost_aim::ROOT), negative cotangent weights solve by MINRES; where MINRES
 // reaches its cap, the rest of the phase factorizes. Here from Tutte's balanced map of the mesh itself (what a level
 // carried back is close to), with the default cap and with a cap of one iteration, which the first solve reaches.
