@@ -39,8 +39,8 @@ enum class Error_code
                         ///< positively oriented, or, with every one positive, the map does not have degree 1 (a
                         ///< generic point covered more than once, or signed areas that do not add up to 4 pi).
   NO_BALANCED_SOLUTION, ///< Proven: no bijective balanced map exists (a connectivity that is not inscribable, for
-                        ///< any positive weights; or a tetrahedron whose weights are not of the one form that has
-                        ///< one).
+                        ///< any positive weights; or a tetrahedron whose weights are not w_ij = u_i u_j of one sign
+                        ///< with each u_i below the sum of the others).
   CANCELLED             ///< The `progress_callback` asked to stop.
 };
 

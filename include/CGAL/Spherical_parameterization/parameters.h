@@ -131,9 +131,9 @@ CGAL_SPHERICAL_PARAMETERIZATION_NAMED_PARAMETER(preserve_bijectivity)
 CGAL_SPHERICAL_PARAMETERIZATION_NAMED_PARAMETER(nonlinear_solver)
 /// `true`: solve with the closest weights the theory covers instead of the given ones: `w_ij` and `w_ji` replaced by
 /// their mean, then weights below 1% of the mean weight at their vertices raised to it (default `false`). Symmetric
-/// positive weights have a bijective balanced solution on every inscribable connectivity; cotangent weights (which
-/// may be negative) and mean-value weights (not symmetric) in general do not. `Result::raised_weights` counts the
-/// edges raised.
+/// positive weights are the case the theory covers (though not every such set of weights has a bijective balanced
+/// solution: the manual's tetrahedron); cotangent weights (which may be negative) and mean-value weights (not
+/// symmetric) are further from it. `Result::raised_weights` counts the edges raised.
 CGAL_SPHERICAL_PARAMETERIZATION_NAMED_PARAMETER(admissible_weights)
 /// `true` (default): with the global Newton solver, on meshes of 20,000 vertices or more with uniform weights and of
 /// 200 or more with other symmetric weights (cotangent, of either sign; admissible; the user's, if symmetric), start

@@ -208,9 +208,10 @@ private:
   // the two-disk guess could not find (CGAL's u.off and part.off refined by one Loop subdivision: NOT_CONVERGED at max
   // imbalance 0.37 and 0.09 from the two disks, OK in 0.04 and 0.06 s from their levels of 84 and 173 vertices).
   // Only for the mesh given: a coarser level from that size on has gone multilevel first (multilevel_applies).
-  // Non-symmetric weights (mean value) never go multilevel first, and take this fallback at every size: their
-  // least-squares iterations from the balanced map of Tutte's weights, carried back from the levels, find a stationary
-  // map on triceratops (11.1 degrees, 6 s in all) and oblong, where those from the two-disk guess stalled. First they
+  // Non-symmetric weights (mean value) never go multilevel first, and take this fallback from 200 vertices on, with
+  // no upper limit: their least-squares iterations from the balanced map of Tutte's weights, carried back from the
+  // levels, find a stationary map on triceratops (11.1 degrees, 11 s in all) and oblong, where those from the
+  // two-disk guess stalled. First they
   // lost more than they won: 47 of the 66 meshes stationary instead of 49 (bear, from Tutte's map, ends at another
   // minimum of the least-squares problem, 6.6 degrees instead of 3.6, not stationary in 30 s; likewise diplodocus,
   // brainspace_conte69_32k and oded_hammer).
@@ -302,8 +303,8 @@ private:
     const std::size_t n = m_system.number_of_vertices;
     // With CGAL::Parallel_tag, the preconditioner of this level's Newton steps is built while the coarser levels are
     // solved (Laplacian_preconditioner_ahead).
-    if(m_options.parallel && !m_preconditioner_ahead.started()
-       && n >= m_options.iterations.tuning.iterative_newton_min_vertices)
+    if(m_options.parallel && m_system.symmetric && !m_preconditioner_ahead.started()
+       && n >= m_options.iterations.tuning.iterative_newton_min_vertices) // (MINRES is for symmetric weights)
       m_preconditioner_ahead.start(m_system);
     Coarsening coarsening =
         coarsen_mesh(m_mesh.points, m_system.triangles, static_cast<std::size_t>(ratio * static_cast<double>(n)));
@@ -484,8 +485,20 @@ private:
     // succeed, so the initial guess (bijective by construction in all but rare cases) is the answer; a few
     // bijectivity-preserving iterations only serve to repair it if some of its triangles are not positive.
     m_inscribability = check_inscribability(m_system);
-    // The tetrahedron's proof is about the weights given: with hold_weights the map may be balanced for held ones.
-    m_tetrahedron = m_options.hold_weights ? Tetrahedron_weights_check() : check_tetrahedron_weights(m_system);
+    // Nor has a tetrahedron whose weights are not of the form of inscribability.h (its proof is about the weights
+    // given: with hold_weights the map may be balanced for held ones). Its two disks are no answer (one of their
+    // four triangles is folded, and the repair collapsed three vertices onto one point): its vertices seen from
+    // their centroid are, bijective by construction.
+    if(!m_options.hold_weights)
+      m_tetrahedron = check_tetrahedron_weights(
+          m_system, std::max(1e-9, m_options.iterations.tuning.tetrahedron_margin * m_options.iterations.tolerance));
+    if(m_tetrahedron.proven_no_balanced_map)
+    {
+      tetrahedron_map(m_mesh.points, m_system.triangles, x);
+      start = certify(m_system.triangles, x);
+      m_result.initial_flipped_faces = start.flipped_faces;
+      m_result.initial_guess.residual = compute_residuals(m_system, x).paper;
+    }
     m_no_balanced_solution = (has_positive_weights(m_system) && m_inscribability.proven_not_inscribable)
                              || m_tetrahedron.proven_no_balanced_map;
     // Non-symmetric weights (mean value) have no exact solution in general: with the imbalance test their iterations
@@ -677,17 +690,17 @@ private:
     {
       std::ostringstream details;
       if(m_tetrahedron.proven_no_balanced_map)
-        details << " (proof, a tetrahedron: " << m_tetrahedron.reason << ")";
+        details << " (proof, a tetrahedron: " << m_tetrahedron.reason << "). The map returned is the tetrahedron's "
+                << "vertices seen from their centroid (or a regular tetrahedron where they are flat)";
       else
         details << " (proof: " << m_inscribability.independent_set_size << " of the " << m_system.number_of_vertices
                 << " vertices are pairwise non-adjacent"
                 << (2 * m_inscribability.independent_set_size == m_system.number_of_vertices
                         ? " and two of the others are adjacent"
                         : "")
-                << ")";
-      details << ". The map returned is the initial guess (two Tutte disks, "
-              << "Moebius inversion, stereographic projection)"
-              << (certificate.bijective
+                << "). The map returned is the initial guess (two Tutte disks, "
+              << "Moebius inversion, stereographic projection)";
+      details << (certificate.bijective
                       ? ", certified bijective"
                       : ", NOT bijective: " + std::to_string(certificate.flipped_faces) + " flipped faces")
               << ", not a balanced one";
@@ -721,7 +734,7 @@ private:
   CGAL::Real_timer m_total;
   Iteration_options m_iteration_options; // m_options.iterations as this mesh's stages run them
   bool m_cancelled = false;
-  bool m_no_balanced_solution = false; // proven: no bijective balanced map exists (m_inscribability)
+  bool m_no_balanced_solution = false; // proven: no bijective balanced map exists (m_inscribability, m_tetrahedron)
   Inscribability_check m_inscribability;
   Tetrahedron_weights_check m_tetrahedron;
   Iteration_report m_newton;

@@ -276,8 +276,9 @@ inline Error_code assign_weights(Sphere_system& system, const Mesh_arrays& mesh,
   return Error_code::OK;
 }
 
-// Replaces the weights by the closest ones the theory covers (Gotsman, Gu and Sheffer: symmetric and positive,
-// for which a bijective balanced solution exists on every inscribable connectivity): w_ij and w_ji by their mean,
+// Replaces the weights by the closest ones the theory covers (Gotsman, Gu and Sheffer: symmetric and positive; a
+// bijective balanced solution is still not guaranteed, see inscribability.h's tetrahedron): w_ij and w_ji by their
+// mean,
 // then every weight below 1% of the mean weight of its two vertices by that 1%. Works on the raw weights, then
 // normalizes again. Returns the number of edges whose weight was raised.
 inline std::size_t make_weights_admissible(Sphere_system& system)

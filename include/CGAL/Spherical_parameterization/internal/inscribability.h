@@ -20,8 +20,11 @@
 #define CGAL_SPHERICAL_PARAMETERIZATION_INTERNAL_INSCRIBABILITY_H
 
 #include <CGAL/Spherical_parameterization/internal/Sphere_system.h>
+#include <CGAL/Spherical_parameterization/internal/Vector3.h>
+#include <CGAL/Spherical_parameterization/internal/certificate.h>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstddef>
 #include <numeric>
@@ -75,7 +78,8 @@ inline Inscribability_check check_inscribability(const Sphere_system& system)
 }
 
 // The tetrahedron (the one closed triangulated sphere of 4 vertices, every pair adjacent) has a balanced bijective
-// map for exactly the symmetric weights of one form, which cotangent weights do not have in general.
+// map for exactly the symmetric weights of one form, which cotangent weights do not have in general (positive ones
+// included: existence is not a matter of the connectivity alone).
 //
 // Balanced means M X = 0, with X the 4 x 3 matrix of the positions and M = diag(alpha) - W, W the raw weights
 // (the tangential part of sum_j w_ij x_j vanishes at every vertex: sum_j w_ij x_j = alpha_i x_i, alpha_i of either
@@ -85,44 +89,57 @@ inline Inscribability_check check_inscribability(const Sphere_system& system)
 // one sign, and of rank one, w_01 w_23 = w_02 w_13 = w_03 w_12, with |u_i| = sqrt(w_ij w_ik / w_jk). The unit
 // vectors x_i with sum_i u_i x_i = 0 not in a plane (a closed, non-planar quadrilateral of sides u_i) exist if and
 // only if each u_i is smaller than the sum of the other three. Conversely, such a quadrilateral is a balanced
-// bijective map (reflected if its orientation is the mesh's opposite). Where a condition fails by more than
-// `margin` (relatively: rounding of the products is far below it), no balanced bijective map exists.
+// bijective map (reflected if its orientation is the mesh's opposite).
+// The proof is about exact balance; the convergence test allows an imbalance up to the tolerance, which weights
+// that miss the form by little can meet. So a condition counts as failed only where it fails by more than `margin`
+// (relatively; the weights are scaled to a largest magnitude of 1 first, so that no product underflows).
 struct Tetrahedron_weights_check
 {
   bool proven_no_balanced_map = false;
   std::string reason; // which condition fails, with its figures
 };
 
-inline Tetrahedron_weights_check check_tetrahedron_weights(const Sphere_system& system, double margin = 1e-6)
+inline Tetrahedron_weights_check check_tetrahedron_weights(const Sphere_system& system, double margin)
 {
   Tetrahedron_weights_check check;
   if(system.number_of_vertices != 4 || !system.symmetric || system.neighbors.size() != 12)
     return check;
   double w[4][4] = {};
+  double largest = 0.;
   for(std::size_t i = 0; i < 4; ++i)
     for(std::size_t k = system.offsets[i]; k < system.offsets[i + 1]; ++k)
+    {
       w[i][std::size_t(system.neighbors[k])] = system.weights[k] * system.row_sums[i];
+      largest = std::max(largest, std::abs(system.weights[k] * system.row_sums[i]));
+    }
+  if(!(largest > 0.) || !std::isfinite(largest))
+    return check;
+  for(std::size_t i = 0; i < 4; ++i)
+    for(std::size_t j = 0; j < 4; ++j)
+      w[i][j] /= largest;
   std::ostringstream reason;
+  reason.precision(10);
+  auto fail = [&]() {
+    check.proven_no_balanced_map = true;
+    check.reason = reason.str();
+    return check;
+  };
   const double sign = w[0][1] < 0. ? -1. : 1.;
   for(std::size_t i = 0; i < 4; ++i)
     for(std::size_t j = i + 1; j < 4; ++j)
       if(!(sign * w[i][j] > 0.))
       {
-        reason << "the weight of edge " << i << "-" << j << " is " << w[i][j] << ", that of edge 0-1 " << w[0][1]
-               << ": the six weights of a balanced tetrahedron are nonzero and of one sign";
-        check.proven_no_balanced_map = true;
-        check.reason = reason.str();
-        return check;
+        reason << "the weights of edges 0-1 and " << i << "-" << j << " are " << w[0][1] * largest << " and "
+               << w[i][j] * largest << ": a balanced tetrahedron needs six nonzero weights of one sign";
+        return fail();
       }
   const double p[3] = {w[0][1] * w[2][3], w[0][2] * w[1][3], w[0][3] * w[1][2]};
-  const double largest = std::max({p[0], p[1], p[2]}), smallest = std::min({p[0], p[1], p[2]});
-  if(largest - smallest > margin * largest)
+  const double most = std::max({p[0], p[1], p[2]}), least = std::min({p[0], p[1], p[2]});
+  if(most - least > margin * most)
   {
-    reason << "the products of the weights of opposite edges differ (w01 w23 = " << p[0] << ", w02 w13 = " << p[1]
-           << ", w03 w12 = " << p[2] << "): a balanced tetrahedron needs them equal";
-    check.proven_no_balanced_map = true;
-    check.reason = reason.str();
-    return check;
+    reason << "the products of the weights of opposite edges, w01 w23, w02 w13, w03 w12, differ by "
+           << (most - least) / most << " of the largest: a balanced tetrahedron needs them equal";
+    return fail();
   }
   double u[4];
   for(std::size_t i = 0; i < 4; ++i)
@@ -134,14 +151,41 @@ inline Tetrahedron_weights_check check_tetrahedron_weights(const Sphere_system& 
   for(std::size_t i = 0; i < 4; ++i)
     if(u[i] - (total - u[i]) > margin * total)
     {
-      reason << "the balanced positions x_i satisfy sum_i u_i x_i = 0 with u = (" << u[0] << ", " << u[1] << ", "
-             << u[2] << ", " << u[3] << "): no unit vectors do, with u_" << i << " = " << u[i]
-             << " above the sum of the others (" << total - u[i] << ")";
-      check.proven_no_balanced_map = true;
-      check.reason = reason.str();
-      return check;
+      reason.precision(4);
+      reason << "the weights are w_ij = u_i u_j with u proportional to (" << u[0] << ", " << u[1] << ", " << u[2]
+             << ", " << u[3] << "), and the positions of a balanced map would satisfy sum_i u_i x_i = 0: no unit "
+             << "vectors do, with u_" << i << " above the sum of the others (" << u[i] << " > " << total - u[i]
+             << ")";
+      return fail();
     }
   return check;
+}
+
+// A bijective map of the tetrahedron by construction: its vertices seen from their centroid (inside a tetrahedron
+// that is not flat; reflected if the mesh is oriented inwards), or else the regular tetrahedron, likewise oriented.
+inline void tetrahedron_map(const std::vector<Vector3>& points, const std::vector<std::array<int, 3>>& triangles,
+                            std::vector<Vector3>& x)
+{
+  auto orient = [&](std::vector<Vector3>& y) {
+    const auto& t = triangles.front();
+    const Vector3 &a = y[std::size_t(t[0])], &b = y[std::size_t(t[1])], &c = y[std::size_t(t[2])];
+    if(dot(a, cross(b, c)) < 0.)
+      for(Vector3& v : y)
+        v.z = -v.z;
+  };
+  const Vector3 centroid = (points[0] + points[1] + points[2] + points[3]) * 0.25;
+  x.resize(4);
+  for(std::size_t i = 0; i < 4; ++i)
+  {
+    const Vector3 d = points[i] - centroid;
+    x[i] = d * (1. / length(d));
+  }
+  orient(x);
+  if(certify(triangles, x).bijective)
+    return;
+  const double c = 1. / std::sqrt(3.);
+  x = {Vector3(c, c, c), Vector3(c, -c, -c), Vector3(-c, c, -c), Vector3(-c, -c, c)};
+  orient(x);
 }
 
 } // namespace internal

@@ -174,6 +174,13 @@ struct Solver_tuning
   int krylov_max_iterations = 300;
   // GMRES(30) stagnated on the transposed solves of oded_hammer (715 iterations in one step); GMRES(60) does not.
   int krylov_restart = 60;
+
+  // --- Proofs that no balanced map exists (inscribability.h) ---
+  // The tetrahedron's condition on its weights counts as failed where it fails by more than this many times the
+  // tolerance (relatively): the regular tetrahedron's imbalance under weights whose products of opposite edges
+  // differ by 2e-6 is 6.7e-7, within the default tolerance; a difference of ten times the tolerance puts every map
+  // that passes the test within a few times the tolerance of flat.
+  double tetrahedron_margin = 10.;
 };
 
 } // namespace internal
