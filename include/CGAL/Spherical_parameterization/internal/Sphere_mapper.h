@@ -211,10 +211,9 @@ private:
   // Non-symmetric weights (mean value) never go multilevel first, and take this fallback from 200 vertices on, with
   // no upper limit: their least-squares iterations from the balanced map of Tutte's weights, carried back from the
   // levels, find a stationary map on triceratops (11.1 degrees, 11 s in all) and oblong, where those from the
-  // two-disk guess stalled. First they
-  // lost more than they won: 47 of the 66 meshes stationary instead of 49 (bear, from Tutte's map, ends at another
-  // minimum of the least-squares problem, 6.6 degrees instead of 3.6, not stationary in 30 s; likewise diplodocus,
-  // brainspace_conte69_32k and oded_hammer).
+  // two-disk guess stalled. First they lost more than they won: 47 of the 66 meshes stationary instead of 49 (bear,
+  // from Tutte's map, ends at another minimum of the least-squares problem, 6.6 degrees instead of 3.6, not
+  // stationary in 30 s; likewise diplodocus, brainspace_conte69_32k and oded_hammer).
   bool multilevel_fallback_applies(const std::vector<Vector3>& x) const
   {
     if(!m_options.multilevel || m_multilevel_tried || m_cancelled || m_no_balanced_solution
@@ -487,8 +486,8 @@ private:
     m_inscribability = check_inscribability(m_system);
     // Nor has a tetrahedron whose weights are not of the form of inscribability.h (its proof is about the weights
     // given: with hold_weights the map may be balanced for held ones). Its two disks are no answer (one of their
-    // four triangles is folded, and the repair collapsed three vertices onto one point): its vertices seen from
-    // their centroid are, bijective by construction.
+    // four triangles was folded on every tetrahedron tried, and the repair collapsed three vertices onto one point):
+    // its vertices seen from their centroid are, bijective by construction.
     if(!m_options.hold_weights)
       m_tetrahedron = check_tetrahedron_weights(
           m_system, std::max(1e-9, m_options.iterations.tuning.tetrahedron_margin * m_options.iterations.tolerance));
@@ -699,7 +698,7 @@ private:
                         ? " and two of the others are adjacent"
                         : "")
                 << "). The map returned is the initial guess (two Tutte disks, "
-              << "Moebius inversion, stereographic projection)";
+                << "Moebius inversion, stereographic projection)";
       details << (certificate.bijective
                       ? ", certified bijective"
                       : ", NOT bijective: " + std::to_string(certificate.flipped_faces) + " flipped faces")
