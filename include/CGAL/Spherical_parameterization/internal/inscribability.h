@@ -109,8 +109,9 @@ inline Tetrahedron_weights_check check_tetrahedron_weights(const Sphere_system& 
   for(std::size_t i = 0; i < 4; ++i)
     for(std::size_t k = system.offsets[i]; k < system.offsets[i + 1]; ++k)
     {
-      w[i][std::size_t(system.neighbors[k])] = system.weights[k] * system.row_sums[i];
-      largest = std::max(largest, std::abs(system.weights[k] * system.row_sums[i]));
+      double& weight = w[i][std::size_t(system.neighbors[k])];
+      weight = system.weights[k] * system.row_sums[i];
+      largest = std::max(largest, std::abs(weight));
     }
   if(!(largest > 0.) || !std::isfinite(largest))
     return check;
@@ -124,13 +125,13 @@ inline Tetrahedron_weights_check check_tetrahedron_weights(const Sphere_system& 
     check.reason = reason.str();
     return check;
   };
-  const double sign = w[0][1] < 0. ? -1. : 1.;
+  // Every vertex's weights have a positive sum (assign_weights), so six weights of one sign are six positive ones.
   for(std::size_t i = 0; i < 4; ++i)
     for(std::size_t j = i + 1; j < 4; ++j)
-      if(!(sign * w[i][j] > 0.))
+      if(!(w[i][j] > 0.))
       {
-        reason << "the weights of edges 0-1 and " << i << "-" << j << " are " << w[0][1] * largest << " and "
-               << w[i][j] * largest << ": a balanced tetrahedron needs six nonzero weights of one sign";
+        reason << "the weight of edge " << i << "-" << j << " is " << w[i][j] * largest
+               << ": a balanced tetrahedron needs six nonzero weights of one sign";
         return fail();
       }
   const double p[3] = {w[0][1] * w[2][3], w[0][2] * w[1][3], w[0][3] * w[1][2]};
@@ -145,7 +146,7 @@ inline Tetrahedron_weights_check check_tetrahedron_weights(const Sphere_system& 
   for(std::size_t i = 0; i < 4; ++i)
   {
     const std::size_t j = (i + 1) % 4, k = (i + 2) % 4;
-    u[i] = std::sqrt(std::abs(w[i][j] * w[i][k] / w[j][k]));
+    u[i] = std::sqrt(w[i][j] * w[i][k] / w[j][k]);
   }
   const double total = u[0] + u[1] + u[2] + u[3];
   for(std::size_t i = 0; i < 4; ++i)

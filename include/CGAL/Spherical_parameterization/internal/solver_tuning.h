@@ -25,8 +25,8 @@ struct Solver_tuning
   std::size_t multilevel_min_vertices = 20000;
   // The same for symmetric weights other than Tutte's (cotangent, admissible ones, the user's): their coarser levels
   // are solved with Tutte's weights, and their two-disk path is the slower and less reliable from a few hundred
-  // vertices on. CGAL's 48 meshes and ../shared's 18 with admissible cotangent weights (2026-11-27): camel converges (1.4 s)
-  // where its two disks did not in 60 s; c3d_cheburashka 0.3 s instead of 48 s, and its angle error 6.9 degrees
+  // vertices on. CGAL's 48 meshes and ../shared's 18 with admissible cotangent weights (2026-11-27): camel converges
+  // (1.4 s) where its two disks did not in 60 s; c3d_cheburashka 0.3 s instead of 48 s, and its angle error 6.9 degrees
   // instead of 77 (its two disks led to a nearly degenerate balanced map; spool likewise, 2.6 instead of 69);
   // homer 0.2 s where it ended unconverged; slower: bear_bis and bull (0.2 s to 1.1 s).
   std::size_t multilevel_min_vertices_other_weights = 200;
