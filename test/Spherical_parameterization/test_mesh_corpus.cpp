@@ -11,7 +11,8 @@
 // here for uniform weights), no face is flipped under the exact predicate and the spherical areas
 // add up to 4 pi, all re-checked here with the public certificate, independently of the returned figures.
 // A case on the known-failures list passes while it still fails (and says so loudly), and fails once it works,
-// so that the list is kept true.
+// so that the list is kept true; a reason that starts with "varies by machine:" marks a case that works on some
+// machines and not on others, which passes either way. A known failure that reports OK unconfirmed fails.
 //
 //   test_mesh_corpus --expect CODE FILE
 // A file that must be refused (bad_input_cases.txt): reading, the input check and, when the soup can be made a
@@ -153,6 +154,8 @@ int main(int argc, char** argv)
   }
   const std::string path = argv[1], weights = argv[2];
   const std::string known_failure = (argc >= 5 && std::string(argv[3]) == "--known-failure") ? argv[4] : "";
+  // A reason starting with this marks a known failure that works on some machines (known_failures.txt).
+  const std::string varies_by_machine_prefix = "varies by machine:";
   // WEIGHTS: uniform, cotangent, mean_value, or one of the last two + "_admissible" (admissible_weights(true)),
   // then optionally "_morton_order": the vertices renumbered first as the package does for large meshes, because
   // on hard meshes the outcome depends on the vertex order.
@@ -292,6 +295,22 @@ int main(int argc, char** argv)
                   && result.flipped_faces == 0;
   if(!known_failure.empty())
   {
+    // A success claimed but not confirmed here is a wrong result, known failure or not.
+    if(result.status == SP::Error_code::OK && !ok)
+    {
+      std::cout << "FAIL: " << path << " [" << weights << "] reports OK, which the checks above do not confirm\n";
+      return 1;
+    }
+    // Chaotic paths: the same code converges on some machines of the same kind and not on others (the iterates
+    // differ in their last bits between processors, and Newton's paths through folds amplify that). Such a case
+    // passes either way, and says which.
+    const bool varies_by_machine = known_failure.rfind(varies_by_machine_prefix, 0) == 0;
+    if(ok && varies_by_machine)
+    {
+      std::cout << "KNOWN FAILURE (works on this machine, fails on others): " << path << " [" << weights
+                << "]: " << known_failure << "\n";
+      return 0;
+    }
     if(ok)
     {
       std::cout << "FAIL: " << path << " [" << weights << "] works now: remove it from known_failures.txt\n";
