@@ -122,7 +122,10 @@ inline Iteration_report mobius_newton(Sphere_state& state, const Iteration_optio
   std::vector<Vector3>& x = state.positions();
   Tangent_newton_system newton(system);
   // The full-step phase on large meshes solves iteratively; the bijectivity-preserving steps keep the factorization,
-  // whose gauge they were tuned with (see Tangent_newton_system::solve).
+  // whose gauge they were tuned with (see Tangent_newton_system::solve), except from a map carried back from a
+  // coarser level (Boost_aim::ROOT): there a factorization costs more than the rest of the level (CGAL's diplodocus
+  // refined twice, 383,682 vertices: 6 to 9 s a step, three steps none of which was accepted, against 0.8 s and the
+  // same iterates by MINRES).
   // The preconditioner is the weights' graph Laplacian, a good model of the Jacobian when every weight is positive
   // (Tutte's, mean value made admissible, cotangent on Delaunay meshes). With negative cotangent weights MINRES
   // needed hundreds of iterations per step from the two-disk guess (c3d_igea: 2,973 in 22 steps, 197 s against 48 s
@@ -131,7 +134,7 @@ inline Iteration_report mobius_newton(Sphere_state& state, const Iteration_optio
   // MINRES does not reach its forcing within its cap, or its step is rejected at the smallest forcing, the rest of
   // the phase factorizes (the exact steps).
   const bool positive_weights = has_positive_weights(system);
-  bool iterative = allow_folds && n >= tuning.iterative_newton_min_vertices
+  bool iterative = (allow_folds || boost_aim == Boost_aim::ROOT) && n >= tuning.iterative_newton_min_vertices
                    && (positive_weights || boost_aim == Boost_aim::ROOT);
   const bool parallel = options.parallel && n >= tuning.side_by_side_min_vertices; // side_by_side.h
   Tangent_krylov_system krylov(system, iterative && options.preconditioner_ahead != nullptr
