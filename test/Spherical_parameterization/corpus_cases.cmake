@@ -80,7 +80,8 @@ foreach(mesh ${SP_CGAL_CORPUS})
 endforeach()
 # uniform_loop2: two subdivisions of the small CAD parts whose refined maps were hard (oblong's level of 1,680 vertices
 # failed from its two disks before coarser levels got the multilevel start as a fallback), and of two thin-limbed
-# models whose maps go through six levels (camel: a known failure since 2026-11-26; hand: about 7 s).
+# models whose maps go through six levels (camel: a known failure since 2026-11-26, converging on some machines since
+# 2026-11-27; hand: about 7 s).
 foreach(mesh oblong u part camel hand)
   sp_add_corpus_case(${SPHERICAL_PARAMETERIZATION_CGAL_DATA}/${mesh}.off uniform_loop2)
 endforeach()

@@ -124,8 +124,10 @@ inline Iteration_report mobius_newton(Sphere_state& state, const Iteration_optio
   // The full-step phase on large meshes solves iteratively; the bijectivity-preserving steps keep the factorization,
   // whose gauge they were tuned with (see Tangent_newton_system::solve), except from a map carried back from a
   // coarser level (Boost_aim::ROOT): there a factorization costs more than the rest of the level (CGAL's diplodocus
-  // refined twice, 383,682 vertices: 6 to 9 s a step, three steps none of which was accepted, against 0.8 s and the
-  // same iterates by MINRES).
+  // refined twice, 383,682 vertices: 6 to 9 s a step, three steps none of which was accepted, against 0.8 s by
+  // MINRES and 1.6 s for its retry to the smallest forcing). MINRES gives the rotation-consistent step, not the plain
+  // gauge's, so where steps are accepted the path differs (CGAL's fandisk_large with cotangent weights now converges
+  // on its finest level: the manual's Newton-Krylov item).
   // The preconditioner is the weights' graph Laplacian, a good model of the Jacobian when every weight is positive
   // (Tutte's, mean value made admissible, cotangent on Delaunay meshes). With negative cotangent weights MINRES
   // needed hundreds of iterations per step from the two-disk guess (c3d_igea: 2,973 in 22 steps, 197 s against 48 s
@@ -229,6 +231,14 @@ inline Iteration_report mobius_newton(Sphere_state& state, const Iteration_optio
         residual = driver.measure().residual;
         ++counts.newton_steps;
       }
+    }
+    // The steps that keep every triangle positive do not give up on a failed iterative solve (its assembly or MINRES
+    // broke down): the factorized step takes over for the rest of the phase, as for negative weights below.
+    if(iterative && !allow_folds && !has_step)
+    {
+      iterative = false;
+      driver.count_retry(); // the same point again, with the factorized step
+      continue;
     }
     if(iterative && !positive_weights
        && (krylov.last_iterations() >= tuning.newton_max_minres_iterations
