@@ -116,6 +116,9 @@ void print_usage(std::ostream& out)
          "      --hold-weights    cotangent weights whose balanced maps, followed from Tutte's weights, end\n"
          "                        before them: hold the weights where that path ends and go on (the map is\n"
          "                        balanced for the held weights: counted in the output; experimental)\n"
+         "      --least-distortion  where the map of the weights given ends unbalanced or not bijective\n"
+         "                        (cotangent, mean_value): return the bijective map of least conformal\n"
+         "                        distortion instead, success when that minimum is stationary (experimental)\n"
          "  -t, --tolerance T     stop when every imbalance e_i <= T (default 1e-6); mean_value weights, which\n"
          "                        have no exact solution: when their least-squares problem is stationary to T\n"
          "      --gauss-seidel-sweeps N  cap of stage 2, the paper's projected Gauss-Seidel (default: the\n"
@@ -163,6 +166,9 @@ void print_usage(std::ostream& out)
          "  held_weight_vertices, held_weight_parameter and requested_weights_max_imbalance (weights other than\n"
          "  Tutte's whose path from Tutte's ends: vertices whose weights were held, see the manual; 0, 1, null\n"
          "  when none),\n"
+         "  least_distortion_map, distortion_energy, max_distortion_stationarity, least_distortion_steps\n"
+         "  (--least-distortion: whether the map returned is the bijective map of least conformal distortion;\n"
+         "  the other three null when it is not),\n"
          "  max_stationarity and unstationary_vertices (non-symmetric weights, else null), residual (Res),\n"
          "  max_tangential_residual, flipped_faces, total_signed_area, bijective,\n"
          "  distortion.{mean_angle_error_degrees,max_angle_error_degrees,log_area_ratio_stddev} (each corner's\n"
@@ -322,7 +328,9 @@ public:
     line << stage_label(progress.stage);
     if(progress.iteration > 0)
       line << ": iteration " << progress.iteration;
-    line << std::setprecision(3) << ", Res " << progress.residual << ", " << progress.non_positive_faces
+    const bool least_distortion = std::string(progress.stage) == "least distortion";
+    line << std::setprecision(3) << (least_distortion ? ", max stationarity " : ", Res ") << progress.residual << ", "
+         << progress.non_positive_faces
          << " non-positive faces";
     show(line.str(), false);
     return true;
@@ -538,6 +546,10 @@ void print_json(std::ostream& out, const SP::Result& r, const Run_figures& run)
       {"vertices_below_precision", json_count(r.vertices_below_precision, computed)},
       {"regularized_tip_vertices", json_count(r.regularized_tip_vertices, computed)},
       {"held_weight_vertices", json_count(r.held_weight_vertices, computed)},
+      {"least_distortion_map", boolean(r.least_distortion_map)},
+      {"distortion_energy", json_number(r.distortion_energy, computed && r.least_distortion_map)},
+      {"max_distortion_stationarity", json_number(r.max_distortion_stationarity, computed && r.least_distortion_map)},
+      {"least_distortion_steps", json_count(r.least_distortion_steps, computed && r.least_distortion_map)},
       {"held_weight_parameter", json_number(r.held_weight_parameter, computed)},
       {"requested_weights_max_imbalance",
        json_number(r.requested_weights_max_imbalance, computed && r.requested_weights_max_imbalance >= 0.)},
@@ -608,6 +620,11 @@ void print_text(std::ostream& out, const SP::Result& r, const Run_figures& run)
                     + ")"
               : std::string())
       << "; " << run.weights << " weights, stopping on " << run.criterion << ")\n";
+  if(r.least_distortion_map)
+    out << "least distortion: the bijective map of least conformal distortion (--least-distortion), not a balanced "
+           "map of the weights given: distortion "
+        << r.distortion_energy << " (1: every triangle similar), max stationarity " << r.max_distortion_stationarity
+        << " after " << r.least_distortion_steps << " Newton steps\n";
   if(r.held_weight_vertices > 0)
     out << "held weights:    " << r.held_weight_vertices << " of the " << r.number_of_vertices
         << " vertices keep the weights blended with Tutte's at s >= " << r.held_weight_parameter
@@ -732,6 +749,7 @@ const Option options[] = {
     {"", "--verbose", nullptr},
     {"", "--admissible-weights", nullptr},
     {"", "--hold-weights", nullptr},
+    {"", "--least-distortion", nullptr},
     {"-q", "--quiet", nullptr},
     {"", "--json", nullptr},
     {"-h", "--help", nullptr},
@@ -802,6 +820,7 @@ struct Settings
   int seed = 0;
   bool quiet = false, json = false, backtracking = true, sparse_lu = false, admissible = false, float64 = false;
   bool hold = false; // --hold-weights
+  bool least_distortion = false; // --least-distortion
   bool overwrite = false; // map again even when the output is already a certified answer to the same request
   bool multilevel = true, verbose = false;
   double radius = 1.;
@@ -939,6 +958,8 @@ Settings parse_arguments(int argc, char** argv)
       settings.admissible = true;
     else if(canonical == "--hold-weights")
       settings.hold = true;
+    else if(canonical == "--least-distortion")
+      settings.least_distortion = true;
     else if(canonical == "--quiet")
       settings.quiet = true;
     else if(canonical == "--json")
@@ -1092,6 +1113,7 @@ struct Run_stamp
   std::string status, weights, criterion, precision, input;
   bool admissible = false;
   bool hold = false; // --hold-weights (absent from the stamps written before it: no)
+  bool least_distortion = false; // --least-distortion (likewise)
   double tolerance = 0., radius = 1.;
 };
 
@@ -1144,6 +1166,7 @@ std::string format_stamp(const Run_stamp& stamp)
   std::ostringstream line;
   line << stamp_tag << " status=" << stamp.status << " weights=" << stamp.weights
        << " admissible=" << (stamp.admissible ? "yes" : "no") << " hold=" << (stamp.hold ? "yes" : "no")
+       << (stamp.least_distortion ? " least_distortion=yes" : "")
        << " criterion=" << stamp.criterion
        << " tolerance=" << round_trip(stamp.tolerance) << " precision=" << stamp.precision
        << " radius=" << round_trip(stamp.radius) << " input=" << stamp.input;
@@ -1178,6 +1201,11 @@ bool parse_stamp(const std::string& text, Run_stamp& stamp)
       stamp.input = value;
     else if(key == "admissible")
       stamp.admissible = value == "yes";
+    else if(key == "least_distortion")
+    {
+      stamp.least_distortion = value == "yes";
+      continue; // optional: written only when asked
+    }
     else if(key == "hold")
     {
       stamp.hold = value == "yes";
@@ -1262,6 +1290,7 @@ std::string reason_not_to_keep(const std::string& output, const Mesh& mesh,
     return "the run that wrote it ended with " + stamp.status;
   const std::string format = output_format(output);
   if(stamp.weights != settings.weights_name || stamp.admissible != settings.admissible || stamp.hold != settings.hold
+     || stamp.least_distortion != settings.least_distortion
      || stamp.criterion != settings.criterion || !(stamp.tolerance <= settings.tolerance)
      || stamp.radius != settings.radius || stamp.precision != output_precision(format, settings))
     return "it was made with other settings (" + stamp_line.substr(stamp_line.find(stamp_tag) + stamp_tag.size() + 1)
@@ -1519,6 +1548,7 @@ int main(int argc, char** argv)
       SP::parameters::preserve_bijectivity(settings.backtracking), SP::parameters::nonlinear_solver(settings.solver),
       SP::parameters::progress_callback(report), SP::parameters::admissible_weights(settings.admissible),
       SP::parameters::hold_weights(settings.hold),
+      SP::parameters::least_distortion(settings.least_distortion),
       SP::parameters::multilevel(settings.multilevel), CGAL::parameters::verbose(settings.verbose),
       SP::parameters::convergence_test(settings.criterion == "paper" ? SP::Convergence_test::PAPER_RESIDUAL
                                                                      : SP::Convergence_test::IMBALANCE));
@@ -1558,6 +1588,7 @@ int main(int argc, char** argv)
     stamp.weights = settings.weights_name;
     stamp.admissible = settings.admissible;
     stamp.hold = settings.hold;
+    stamp.least_distortion = settings.least_distortion;
     stamp.criterion = settings.criterion;
     stamp.tolerance = settings.tolerance;
     stamp.precision = output_precision(output_format(output), settings);

@@ -174,6 +174,9 @@ int main(int argc, char** argv)
   const bool admissible = strip(base, "_admissible");
   // "_held": hold_weights(true), where the path of balanced maps from Tutte's weights ends (cotangent).
   const bool held = strip(base, "_held");
+  // "_least_distortion": least_distortion(true), the bijective map of least conformal distortion where the weights'
+  // map ends unconverged (cotangent, mean value).
+  const bool least_distortion = strip(base, "_least_distortion");
   SP::Weighting weighting = SP::Weighting::UNIFORM;
   if(base == "cotangent")
     weighting = SP::Weighting::COTANGENT;
@@ -217,7 +220,8 @@ int main(int argc, char** argv)
   const SP::Result result = SP::spherical_parameterize(
       mesh, sphere,
       SP::parameters::combine(SP::parameters::weighting(weighting), SP::parameters::max_seconds(budget),
-                              SP::parameters::admissible_weights(admissible), SP::parameters::hold_weights(held)));
+                              SP::parameters::admissible_weights(admissible), SP::parameters::hold_weights(held),
+                              SP::parameters::least_distortion(least_distortion)));
   const SP::Sphere_map_certificate certificate = SP::certify_sphere_map(mesh, sphere);
 
   std::cout << path << " [" << weights << "] faces " << mesh.number_of_faces() << " status "
@@ -230,7 +234,12 @@ int main(int argc, char** argv)
             << result.gauss_seidel.iterations << "/" << result.newton.iterations
             << (result.uniform_initial_guess_fallback ? " (uniform initial guess)" : "") << " held "
             << result.held_weight_vertices << " at s >= " << result.held_weight_parameter << " (requested weights' max imbalance "
-            << result.requested_weights_max_imbalance << ")\n";
+            << result.requested_weights_max_imbalance << ")"
+            << (result.least_distortion_map ? " least distortion " + std::to_string(result.distortion_energy)
+                                                  + ", max stationarity "
+                                                  + std::to_string(result.max_distortion_stationarity)
+                                            : std::string())
+            << "\n";
 
   // The imbalance recomputed here on the written map, by its definition (uniform weights: every neighbour counts
   // the same), with the documented rounding floor: every vertex within 1e-6 of balanced, or within its floor, or
@@ -278,11 +287,16 @@ int main(int argc, char** argv)
   // Non-symmetric weights (mean value) stop on the stationarity of their least-squares problem (their imbalance
   // cannot reach the tolerance); the result reports it. (On regular meshes such as the octahedron, mean-value weights
   // are symmetric: the imbalance test then.)
+  // A least-distortion map (least_distortion) is tested on the stationarity of that minimum, within the tolerance;
+  // without the option there is none.
   const bool least_squares = base == "mean_value" && !admissible && result.max_stationarity >= 0.;
   const bool balanced =
-      result.convergence_test == SP::Convergence_test::IMBALANCE
-      && (least_squares ? result.max_stationarity >= 0. && result.unstationary_vertices == 0
-                        : result.max_imbalance >= 0. && result.unbalanced_vertices == 0 && unbalanced == 0);
+      result.least_distortion_map
+          ? least_distortion && result.max_distortion_stationarity >= 0. && result.max_distortion_stationarity <= 1e-6
+                && result.distortion_energy >= 1.
+          : result.convergence_test == SP::Convergence_test::IMBALANCE
+                && (least_squares ? result.max_stationarity >= 0. && result.unstationary_vertices == 0
+                                  : result.max_imbalance >= 0. && result.unbalanced_vertices == 0 && unbalanced == 0);
   // Held weights are reported with the parameter they are held at and the imbalance under the weights requested;
   // without hold_weights no weight is held.
   const bool holds_reported =

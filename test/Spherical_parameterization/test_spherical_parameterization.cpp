@@ -12,6 +12,7 @@
 #include <CGAL/Spherical_parameterization/check_input.h>
 #include <CGAL/Spherical_parameterization/internal/stage3/constrained_balance.h>
 #include <CGAL/Spherical_parameterization/internal/stage3/imbalance_least_squares.h>
+#include <CGAL/Spherical_parameterization/internal/stage3/least_distortion.h>
 #include <CGAL/Spherical_parameterization/is_bijective_on_sphere.h> // certificate and distortion, through the header kept for earlier code
 #include <CGAL/Spherical_parameterization/spherical_parameterize.h>
 
@@ -1187,6 +1188,112 @@ TEST(WeightContinuation, HoldsWeightsWherePathEnds)
   EXPECT_TRUE(SPI::summarize_imbalance(held_system, x, 1e-6).balanced());
   EXPECT_FALSE(SPI::summarize_imbalance(system, x, 1e-6).balanced());
   EXPECT_TRUE(SPI::certify(system.triangles, x).bijective);
+}
+
+// The least-distortion energy of one face: its gradient and Hessian against central differences, 1 for a face
+// similar to its 3D triangle, +infinity for a map with a face not positive.
+TEST(LeastDistortion, FaceEnergyDerivatives)
+{
+  namespace D = SP::internal::least_distortion_detail;
+  D::Face_shape shape;
+  shape.weight = 0.7;
+  shape.cot[0] = 0.3;
+  shape.cot[1] = -0.2; // an obtuse corner: negative cotangents are part of the energy
+  shape.cot[2] = 1.4;
+  D::V3 p[3] = {D::V3(0.9, 0.3, 0.2).normalized(), D::V3(0.1, -0.8, 0.5).normalized(),
+                D::V3(-0.5, 0.2, 0.9).normalized()};
+  if(D::orientation(p[0], p[1], p[2]) < 0.)
+    std::swap(p[1], p[2]);
+  D::Vector9 gradient;
+  D::Matrix9 hessian;
+  D::face_energy(shape, p, &gradient, &hessian);
+  const double h = 1e-6;
+  for(int c = 0; c < 9; ++c)
+  {
+    D::V3 plus[3] = {p[0], p[1], p[2]}, minus[3] = {p[0], p[1], p[2]};
+    plus[c / 3][c % 3] += h;
+    minus[c / 3][c % 3] -= h;
+    D::Vector9 g_plus, g_minus;
+    const double e_plus = D::face_energy(shape, plus, &g_plus);
+    const double e_minus = D::face_energy(shape, minus, &g_minus);
+    EXPECT_NEAR((e_plus - e_minus) / (2 * h), gradient[c], 1e-7 * gradient.norm()) << c;
+    EXPECT_LT(((g_plus - g_minus) / (2 * h) - hessian.col(c)).norm(), 1e-7 * hessian.norm()) << c;
+  }
+  // A small face similar to its 3D triangle (equilateral: every cotangent 1/sqrt(3)): energy = its weight.
+  D::Face_shape equilateral;
+  equilateral.weight = 1.;
+  for(double& c : equilateral.cot)
+    c = 1. / std::sqrt(3.);
+  const D::V3 centre = D::V3(1., 2., 2.).normalized(), u = centre.unitOrthogonal(), v = centre.cross(u);
+  D::V3 small[3];
+  for(int k = 0; k < 3; ++k)
+    small[k] = (centre + 1e-3 * (std::cos(2 * M_PI * k / 3) * u + std::sin(2 * M_PI * k / 3) * v)).normalized();
+  EXPECT_NEAR(D::face_energy(equilateral, small), 1., 1e-6);
+
+  Mesh mesh;
+  CGAL::make_tetrahedron(Point(0, 0, 0), Point(1, 0, 0), Point(0, 1, 0), Point(0, 0, 1), mesh);
+  SP::internal::Mesh_arrays arrays =
+      SP::internal::read_face_graph(mesh, get(CGAL::vertex_point, mesh), get(CGAL::vertex_index, mesh));
+  const std::vector<SP::internal::Vector3> corners = {
+      {1, 1, 1}, {1, -1, -1}, {-1, 1, -1}, {-1, -1, 1}}; // a regular tetrahedron, positive or all negative
+  std::vector<SP::internal::Vector3> x(4);
+  for(int i = 0; i < 4; ++i)
+    x[i] = corners[i];
+  const double regular = SP::internal::conformal_distortion(arrays.triangles, arrays.points, x);
+  std::swap(x[0], x[1]); // every face reversed
+  const double reversed = SP::internal::conformal_distortion(arrays.triangles, arrays.points, x);
+  EXPECT_TRUE(std::isfinite(regular) != std::isfinite(reversed)); // one orientation is positive, not both
+}
+
+// The public option: where the map of cotangent or mean-value weights ends unconverged (u.off; the tetrahedron, whose
+// cotangent weights provably have no balanced bijective map), the bijective map of least conformal distortion, with
+// status OK when it is stationary; on a mesh whose cotangent map is balanced, that map.
+TEST(SphericalParameterize, LeastDistortion)
+{
+  auto run = [](const std::string& file, SP::Weighting weighting, bool least_distortion, double* angle_error) {
+    Mesh mesh = read_mesh(cgal_data + "/" + file);
+    auto sphere = mesh.add_property_map<Mesh::Vertex_index, Point>("v:sphere", Point(0, 0, 0)).first;
+    const SP::Result result = SP::spherical_parameterize(
+        mesh, sphere,
+        SP::parameters::combine(SP::parameters::weighting(weighting),
+                                SP::parameters::least_distortion(least_distortion), SP::parameters::max_seconds(60.)));
+    *angle_error = SP::measure_spherical_distortion(mesh, sphere).mean_angle_error_degrees;
+    if(result.status == SP::Error_code::OK)
+      EXPECT_TRUE(exact_certificate(mesh, sphere).bijective()) << file;
+    return result;
+  };
+  double without = 0., with = 0.;
+  {
+    const SP::Result plain = run("u.off", SP::Weighting::COTANGENT, false, &without);
+    EXPECT_NE(plain.status, SP::Error_code::OK); // known_failures.txt
+    EXPECT_FALSE(plain.least_distortion_map);
+    EXPECT_EQ(plain.distortion_energy, -1.);
+    const SP::Result result = run("u.off", SP::Weighting::COTANGENT, true, &with);
+    EXPECT_EQ(result.status, SP::Error_code::OK) << result.message;
+    EXPECT_TRUE(result.least_distortion_map);
+    EXPECT_GE(result.distortion_energy, 1.);
+    EXPECT_LE(result.max_distortion_stationarity, 1e-6);
+    EXPECT_GT(result.least_distortion_steps, 0u);
+    EXPECT_GT(result.max_imbalance, 1e-6); // not a balanced map of the weights given, and it says so
+    EXPECT_LT(with, without);
+  }
+  {
+    const SP::Result result = run("u.off", SP::Weighting::MEAN_VALUE, true, &with);
+    EXPECT_EQ(result.status, SP::Error_code::OK) << result.message;
+    EXPECT_TRUE(result.least_distortion_map);
+  }
+  {
+    const SP::Result result = run("tetrahedron.off", SP::Weighting::COTANGENT, true, &with);
+    EXPECT_EQ(result.status, SP::Error_code::OK) << result.message;
+    EXPECT_TRUE(result.least_distortion_map);
+  }
+  {
+    const SP::Result result = run("sphere966.off", SP::Weighting::COTANGENT, true, &with);
+    EXPECT_EQ(result.status, SP::Error_code::OK) << result.message;
+    EXPECT_FALSE(result.least_distortion_map);
+    EXPECT_EQ(result.distortion_energy, -1.);
+    EXPECT_LE(result.max_imbalance, 1e-6);
+  }
 }
 
 // The public option: cotangent weights on CGAL's u.off end NOT_CONVERGED without it (known_failures.txt); with it,

@@ -130,6 +130,10 @@ py::dict result_dict(const SP::Result& r, const std::string& weights, const std:
   d["held_weight_vertices"] = r.held_weight_vertices;
   d["held_weight_parameter"] = r.held_weight_parameter;
   d["requested_weights_max_imbalance"] = number(r.requested_weights_max_imbalance);
+  d["least_distortion_map"] = r.least_distortion_map;
+  d["distortion_energy"] = number(r.distortion_energy);
+  d["max_distortion_stationarity"] = number(r.max_distortion_stationarity);
+  d["least_distortion_steps"] = r.least_distortion_steps;
   d["multilevel_fallback"] = r.multilevel_fallback;
   d["residual"] = number(r.residual);
   d["max_tangential_residual"] = number(r.max_tangential_residual);
@@ -166,7 +170,7 @@ py::dict result_dict(const SP::Result& r, const std::string& weights, const std:
 
 py::tuple map_to_sphere(const Vertices& V, const Faces& F, const std::string& weights, double tolerance,
                         const std::string& criterion, py::object max_seconds, bool admissible_weights,
-                        py::object progress, bool hold_weights)
+                        py::object progress, bool hold_weights, bool least_distortion)
 {
   SP::Weighting weighting;
   if(weights == "uniform")
@@ -225,7 +229,8 @@ py::tuple map_to_sphere(const Vertices& V, const Faces& F, const std::string& we
         SP::parameters::combine(
             SP::parameters::weighting(weighting), SP::parameters::tolerance(tolerance),
             SP::parameters::max_seconds(budget), SP::parameters::admissible_weights(admissible_weights),
-            SP::parameters::hold_weights(hold_weights), SP::parameters::progress_callback(report),
+            SP::parameters::hold_weights(hold_weights), SP::parameters::least_distortion(least_distortion),
+            SP::parameters::progress_callback(report),
             SP::parameters::convergence_test(criterion == "paper" ? SP::Convergence_test::PAPER_RESIDUAL
                                                                   : SP::Convergence_test::IMBALANCE)));
     // The map's shape against the mesh's, as in the command line's JSON.
@@ -346,13 +351,16 @@ PYBIND11_MODULE(cgal_spherical_parameterization, m)
       "map_to_sphere", &map_to_sphere, py::arg("V"), py::arg("F"), py::arg("weights") = "uniform",
       py::arg("tolerance") = 1e-6, py::arg("criterion") = "imbalance", py::arg("max_seconds") = py::none(),
       py::arg("admissible_weights") = false, py::arg("progress") = py::none(), py::arg("hold_weights") = false,
+      py::arg("least_distortion") = false,
       "Maps the mesh (V: (n,3) float64, F: (m,3) int) onto the unit sphere. Returns (X, info): X (n,3) float64 on the\n"
       "unit sphere in V's vertex order, info a dict with the command line's JSON figures ('status', 'success',\n"
       "'max_imbalance', 'flipped_faces', 'bijective', 'distortion', 'stages', ...). A map that is not converged or\n"
       "not bijective is returned with its status; invalid input raises ValueError('CODE: message'). progress(stage,\n"
       "iteration, residual, non_positive_faces, seconds) is called at most ten times a second; returning False\n"
       "stops the run. Ctrl-C raises KeyboardInterrupt. hold_weights: cotangent weights whose balanced maps from\n"
-      "Tutte's weights end before them are held where that path ends (info['held_weight_vertices']; experimental).");
+      "Tutte's weights end before them are held where that path ends (info['held_weight_vertices']; experimental).\n"
+      "least_distortion: where the weights' map ends unconverged, the bijective map of least conformal distortion\n"
+      "instead (info['least_distortion_map']; experimental).");
   m.def("certify", &certify, py::arg("X"), py::arg("F"),
         "Certifies a map onto the sphere with exact predicates: dict(bijective, flipped_faces, total_signed_area, "
         "faces).");

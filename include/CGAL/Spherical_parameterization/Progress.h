@@ -22,13 +22,14 @@ namespace Spherical_parameterization {
 /// inside an iteration that lasts, the last report again with its time updated, at most every half second).
 struct Progress
 {
-  /// "initial guess", "gauss-seidel", "global newton", "local newton", or "weight continuation" (the global Newton
-  /// steps that follow balanced maps from Tutte's weights to cotangent weights, one phase per blend of the weights).
+  /// "initial guess", "gauss-seidel", "global newton", "local newton", "weight continuation" (the global Newton
+  /// steps that follow balanced maps from Tutte's weights to cotangent weights, one phase per blend of the weights),
+  /// or "least distortion" (named parameter `least_distortion`: the minimization of the conformal distortion).
   const char* stage = "";
   /// Iterations so far of the current phase (0 for the initial guess): the count starts again with each phase of
   /// stage 3 (such as Newton's full steps, then the bijectivity-preserving ones) and on each level.
   std::size_t iteration = 0;
-  double residual = -1.; ///< The paper's `Res` now.
+  double residual = -1.; ///< The paper's `Res` now; in stage "least distortion", the largest stationarity instead.
   double max_imbalance =
       -1.; ///< The largest imbalance `e_i` (see `Convergence_test`) at the end of stage 1; -1 in the per-iteration reports.
   std::size_t non_positive_faces = 0; ///< Spherical triangles not positively oriented now.

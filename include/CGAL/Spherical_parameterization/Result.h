@@ -96,6 +96,20 @@ struct Result
   /// The largest imbalance under the weights requested when weights were held (`held_weight_vertices` > 0); -1
   /// otherwise (then `max_imbalance` is under the weights requested).
   double requested_weights_max_imbalance = -1.;
+  /// With the named parameter `least_distortion`: the map returned is the bijective map of least conformal distortion
+  /// (not a balanced map of the weights given, whose figures `max_imbalance` and the others still report), because
+  /// those weights' map ended unbalanced or not bijective. Then the convergence test is the stationarity of that
+  /// minimum: `max_distortion_stationarity` at most the tolerance (or its rounding floor) at every vertex.
+  bool least_distortion_map = false;
+  /// The conformal distortion of the map returned when `least_distortion_map`: the mean, weighted by 3D area, of
+  /// \f$(\sigma_1^2 + \sigma_2^2) / (2 \sigma_1 \sigma_2)\f$ over the affine maps from each 3D triangle to the flat
+  /// triangle through its sphere points (1 for similar triangles); -1 otherwise.
+  double distortion_energy = -1.;
+  /// When `least_distortion_map`: the largest stationarity of that minimum over the vertices (the manual's Method
+  /// section defines it); -1 otherwise.
+  double max_distortion_stationarity = -1.;
+  /// When `least_distortion_map`: the Newton steps of that minimization; 0 otherwise.
+  std::size_t least_distortion_steps = 0;
   /// The map comes from the multilevel start tried after the two-disk path ended unconverged on a mesh below the
   /// multilevel size (the manual's Method section); `levels` then describes it.
   bool multilevel_fallback = false;

@@ -88,6 +88,10 @@ enum hold_weights_t
 {
   hold_weights
 };
+enum least_distortion_t
+{
+  least_distortion
+};
 } // namespace internal_np
 
 namespace parameters {
@@ -147,6 +151,13 @@ CGAL_SPHERICAL_PARAMETERIZATION_NAMED_PARAMETER(multilevel)
 /// (`Result::held_weight_vertices`, `Result::held_weight_parameter`); default `false`: such maps end
 /// `Error_code::NOT_CONVERGED`. An experimental option: see the manual's Method section for what it costs in shape.
 CGAL_SPHERICAL_PARAMETERIZATION_NAMED_PARAMETER(hold_weights)
+/// `true`: where the map of the weights given ends neither balanced nor bijective (cotangent and mean-value weights
+/// whose balanced map folds or does not exist), return instead the bijective map of least conformal distortion: a
+/// minimum, over bijective maps, of the conformal distortion of the flat triangles through the sphere points against
+/// the 3D triangles, started from the best map reached (or Tutte's map). `Result::least_distortion_map` says so, and
+/// the status is `Error_code::OK` when that minimum is stationary (`Result::max_distortion_stationarity`) and the
+/// map certified. Default `false`. An experimental option: see the manual's Method section for what it gives.
+CGAL_SPHERICAL_PARAMETERIZATION_NAMED_PARAMETER(least_distortion)
 /// Seed of METIS' randomized separator (default 0): the same seed gives bitwise identical output.
 CGAL_SPHERICAL_PARAMETERIZATION_NAMED_PARAMETER(metis_seed)
 

@@ -127,6 +127,14 @@ using Sparse_LU_disk_solver_traits = internal::Sparse_LU_solver_traits;
 ///     \cgalParamType{`bool`}
 ///     \cgalParamDefault{`false`}
 ///   \cgalParamNEnd
+///   \cgalParamNBegin{least_distortion}
+///     \cgalParamDescription{where the map of the weights given ends unbalanced or not bijective (cotangent,
+///                           mean value): return the bijective map of least conformal distortion instead (a
+///                           stationary minimum of the flat triangles' conformal distortion over bijective maps),
+///                           `Result::least_distortion_map` says so; experimental}
+///     \cgalParamType{`bool`}
+///     \cgalParamDefault{`false`}
+///   \cgalParamNEnd
 ///   \cgalParamNBegin{multilevel}
 ///     \cgalParamDescription{with the global solver, on meshes of 20,000 vertices or more with uniform weights and of
 ///                           200 or more with other symmetric weights (cotangent, of either sign; admissible;
@@ -364,6 +372,7 @@ Result spherical_parameterize(const TriangleMesh& tm, VertexSphereMap vsm,
     options.weighting = Weighting::USER_MAP; // the disks use the same (admissible) weights
   options.admissible_weights = admissible;
   options.hold_weights = choose_parameter(get_parameter(np, internal_np::hold_weights), false);
+  options.least_distortion = choose_parameter(get_parameter(np, internal_np::least_distortion), false);
 
   using Solver = typename CGAL::internal_np::Lookup_named_param_def<CGAL::internal_np::sparse_linear_solver_t,
                                                                     NamedParameters, Default_disk_solver_traits>::type;

@@ -26,6 +26,7 @@
 #include <CGAL/Spherical_parameterization/internal/mesh_coarsening.h>
 #include <CGAL/Spherical_parameterization/internal/sphere_iterations.h>
 #include <CGAL/Spherical_parameterization/internal/stage3/global_newton.h>
+#include <CGAL/Spherical_parameterization/internal/stage3/least_distortion.h>
 #include <CGAL/Spherical_parameterization/internal/two_disk_partition.h>
 
 #include <CGAL/Eigen_solver_traits.h>
@@ -68,6 +69,7 @@ struct Pipeline_options
   Weighting weighting = Weighting::UNIFORM;
   bool admissible_weights = false; // the weights were made symmetric and positive
   bool hold_weights = false;       // the weight continuation may hold weights where its path ends (weight_continuation.h)
+  bool least_distortion = false;   // an unconverged map is replaced by the bijective map of least distortion
   Nonlinear_solver nonlinear_solver = Nonlinear_solver::GLOBAL_NEWTON;
   int metis_seed = 0;
   const idx_t* metis_options = nullptr; // METIS_NOPTIONS values, or nullptr for METIS' defaults and metis_seed
@@ -142,6 +144,7 @@ public:
     m_result.number_of_vertices = m_system.number_of_vertices;
     m_result.number_of_faces = m_system.triangles.size();
     m_iteration_options = m_options.iterations;
+    m_iteration_options.least_distortion_follows = m_options.least_distortion && !m_options.coarse_level;
     if(multilevel_applies())
       m_multilevel_tried = true;
     if(m_multilevel_tried && multilevel_start(x))
@@ -164,6 +167,8 @@ public:
       if(multilevel_fallback_applies(x))
         multilevel_fallback(x);
     }
+    if(m_options.least_distortion && !m_options.coarse_level)
+      least_distortion(x);
     certify_and_report(x);
     m_result.total_seconds = m_total.time();
     return m_result;
@@ -607,20 +612,91 @@ private:
        || m_iteration_options.convergence_test != Convergence_test::IMBALANCE)
       return {};
     return [this](std::vector<Vector3>& y) {
-      Sphere_system uniform = make_connectivity(m_system.triangles, m_system.number_of_vertices);
-      std::string message;
-      if(assign_weights(uniform, m_mesh, Weighting::UNIFORM, {}, message) != Error_code::OK)
-        return false;
-      Pipeline_options uniform_options = m_options;
-      uniform_options.weighting = Weighting::UNIFORM;
-      uniform_options.admissible_weights = false;
       if(m_options.verbose)
         std::cerr << "stage 3: Tutte's balanced map, the start of the path towards the weights requested\n";
-      const Result uniform_result = Sphere_mapper(m_mesh, uniform, uniform_options, m_solver).map(y);
-      // A cancel there (the progress callback, the command line's SIGTERM) is this call's cancel.
-      m_cancelled = m_cancelled || uniform_result.status == Error_code::CANCELLED;
-      return uniform_result.status == Error_code::OK;
+      return compute_tutte_map(y);
     };
+  }
+
+  // Tutte's balanced map of this mesh by the whole pipeline with uniform weights; true when it is certified.
+  bool compute_tutte_map(std::vector<Vector3>& y)
+  {
+    Sphere_system uniform = make_connectivity(m_system.triangles, m_system.number_of_vertices);
+    std::string message;
+    if(assign_weights(uniform, m_mesh, Weighting::UNIFORM, {}, message) != Error_code::OK)
+      return false;
+    Pipeline_options uniform_options = m_options;
+    uniform_options.weighting = Weighting::UNIFORM;
+    uniform_options.admissible_weights = false;
+    uniform_options.hold_weights = false;
+    uniform_options.least_distortion = false;
+    const Result uniform_result = Sphere_mapper(m_mesh, uniform, uniform_options, m_solver).map(y);
+    // A cancel there (the progress callback, the command line's SIGTERM) is this call's cancel.
+    m_cancelled = m_cancelled || uniform_result.status == Error_code::CANCELLED;
+    return uniform_result.status == Error_code::OK;
+  }
+
+  // Whether x passes this call's convergence test (balanced, or stationary for non-symmetric weights, or the paper's
+  // Res) and the certificate.
+  bool converged_and_bijective(const std::vector<Vector3>& x) const
+  {
+    const double tolerance = m_options.iterations.tolerance;
+    const bool converged =
+        m_iteration_options.convergence_test == Convergence_test::PAPER_RESIDUAL
+            ? compute_residuals(m_system, x).paper < tolerance
+            : (m_system.symmetric ? summarize_imbalance(m_system, x, tolerance)
+                                  : summarize_stationarity(m_system, x, tolerance))
+                  .balanced();
+    return converged && certify(m_system.triangles, x).bijective;
+  }
+
+  // With least_distortion: where the map of the weights given did not converge (or is not bijective, or provably
+  // cannot be balanced), the bijective map of least conformal distortion (stage3/least_distortion.h) from it, or from
+  // Tutte's map where some of its faces are not positive in double precision. It replaces x only when certified.
+  void least_distortion(std::vector<Vector3>& x)
+  {
+    if(m_cancelled || (!m_no_balanced_solution && converged_and_bijective(x)))
+      return;
+    CGAL::Real_timer clock;
+    clock.start();
+    Iteration_options options = m_options.iterations;
+    options.max_newton_sweeps = options.tuning.least_distortion_max_steps;
+    if(options.max_seconds >= 0.)
+      options.max_seconds = std::max(0., options.max_seconds - m_options.call_clock.time());
+    // The start of lower distortion: the map reached, or Tutte's map (the maps where cotangent weights end often
+    // squeeze faces to the limits of double precision, which a minimization of their shape cannot undo: CGAL's man
+    // ended at distortion 12,000 from there after 110 s, 9.9 degrees of angle error from Tutte's map).
+    std::vector<Vector3> y = x, tutte;
+    const double reached = conformal_distortion(m_system.triangles, m_mesh.points, x);
+    if(!has_tutte_weights(m_system) && compute_tutte_map(tutte) && !m_cancelled)
+    {
+      const double from_tutte = conformal_distortion(m_system.triangles, m_mesh.points, tutte);
+      if(m_options.verbose)
+        std::cerr << "least distortion: distortion " << reached << " of the map reached, " << from_tutte
+                  << " of Tutte's map\n";
+      if(from_tutte < reached)
+        y.swap(tutte);
+    }
+    Least_distortion_report report; // the time budget counts from `clock`'s start, Tutte's map included
+    if(!m_cancelled)
+      report = minimize_conformal_distortion(m_system.triangles, m_mesh.points, y, options, clock);
+    m_cancelled = m_cancelled || report.cancelled;
+    if(m_options.verbose)
+      std::cerr << "least distortion: " << (report.started ? "" : "not started, ") << report.newton_steps
+                << " Newton steps, distortion " << report.energy << ", max stationarity " << report.max_stationarity
+                << (report.stationary ? " (stationary)" : "") << ", " << clock.time() << " s\n";
+    m_result.newton.seconds += clock.time();
+    // Only a minimization that ran replaces the map, and only if certified: a start alone (no time left for a step)
+    // is no least-distortion map.
+    if(!report.started || report.newton_steps == 0 || !(report.energy < reached)
+       || !certify(m_system.triangles, y).bijective)
+      return;
+    x.swap(y);
+    m_result.least_distortion_map = true;
+    m_result.distortion_energy = report.energy;
+    m_result.max_distortion_stationarity = report.max_stationarity;
+    m_result.least_distortion_steps = report.newton_steps;
+    m_least_distortion_stationary = report.stationary;
   }
 
   // The map is balanced for the weights requested except at the vertices held by the continuation: from here on the
@@ -668,16 +744,26 @@ private:
       m_result.max_stationarity = stationarity.max;
       m_result.unstationary_vertices = stationarity.unbalanced_vertices;
     }
-    const bool converged = m_iteration_options.convergence_test == Convergence_test::PAPER_RESIDUAL
+    const bool converged = m_result.least_distortion_map ? m_least_distortion_stationary
+                           : m_iteration_options.convergence_test == Convergence_test::PAPER_RESIDUAL
                                ? m_result.residual < m_options.iterations.tolerance
                                : (m_system.symmetric ? imbalance : stationarity).balanced();
     m_result.status =
         !converged ? Error_code::NOT_CONVERGED : (certificate.bijective ? Error_code::OK : Error_code::NOT_BIJECTIVE);
     if(m_cancelled)
       m_result.status = Error_code::CANCELLED;
-    if(m_no_balanced_solution)
+    if(m_no_balanced_solution && !m_result.least_distortion_map)
       m_result.status = Error_code::NO_BALANCED_SOLUTION;
     m_result.message = get_error_message(m_result.status);
+    if(m_result.least_distortion_map)
+    {
+      std::ostringstream note;
+      note << " [the bijective map of least conformal distortion (least_distortion), not a balanced map of the "
+           << "weights given (max imbalance " << m_result.max_imbalance << "): distortion " << m_result.distortion_energy
+           << ", max stationarity " << m_result.max_distortion_stationarity << " after "
+           << m_result.least_distortion_steps << " Newton steps]";
+      m_result.message += note.str();
+    }
     if(!m_system.symmetric && m_iteration_options.convergence_test == Convergence_test::IMBALANCE)
     {
       std::ostringstream note;
@@ -685,7 +771,7 @@ private:
            << m_result.max_stationarity << "; their imbalance cannot reach the tolerance]";
       m_result.message += note.str();
     }
-    if(m_no_balanced_solution)
+    if(m_no_balanced_solution && !m_result.least_distortion_map)
     {
       std::ostringstream details;
       if(m_tetrahedron.proven_no_balanced_map)
@@ -705,7 +791,7 @@ private:
               << ", not a balanced one";
       m_result.message += details.str();
     }
-    else if(m_result.status != Error_code::OK)
+    else if(m_result.status != Error_code::OK && !m_result.least_distortion_map)
     {
       std::ostringstream details;
       details << " (max imbalance " << m_result.max_imbalance << ", " << m_result.unbalanced_vertices
@@ -738,6 +824,7 @@ private:
   Tetrahedron_weights_check m_tetrahedron;
   Iteration_report m_newton;
   double m_multilevel_newton_seconds = 0.;
+  bool m_least_distortion_stationary = false;
   bool m_multilevel_tried = false; // the multilevel start came first (multilevel_applies): no fallback to it
   // Last: destroyed first, it waits for its thread, which reads m_system.
   Laplacian_preconditioner_ahead m_preconditioner_ahead;

@@ -52,6 +52,9 @@ struct Iteration_options
   // The stage that mobius_newton's progress reports name (Progress::stage): "weight continuation" for its solves along
   // the weight continuation (weight_continuation.h), whose counts start again at each blend of the weights.
   const char* newton_stage = "global newton";
+  // The least-distortion minimization follows where this call ends unconverged (named parameter least_distortion):
+  // global_newton() leaves out its last resort, the cautious Newton, whose map that minimization would replace.
+  bool least_distortion_follows = false;
 
   bool cancel_requested() const { return keep_going && !keep_going(); }
 };

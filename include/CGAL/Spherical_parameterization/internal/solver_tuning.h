@@ -80,6 +80,9 @@ struct Solver_tuning
   std::size_t free_newton_patience = 30;
   // The bijectivity-preserving steps give up after this many steps in a row cut below `short_step`.
   std::size_t cautious_patience = 3;
+  // The cap of Newton steps of the least-distortion minimization (least_distortion.h): triceratops' stationary
+  // minimum takes 340, man's is not reached in 300 (the manual's Method section).
+  std::size_t least_distortion_max_steps = 2000;
   double short_step = 0.25;
   // Line searches halve the step down to these lengths (Moebius-aware Newton, cautious Newton, boosts).
   double newton_min_step = 1e-3;

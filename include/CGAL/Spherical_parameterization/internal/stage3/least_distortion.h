@@ -1,0 +1,438 @@
+// Copyright (c) 2026 CGAL Spherical Parameterization contributors.
+// This file is part of CGAL Spherical Parameterization, a package in CGAL's style (www.cgal.org).
+//
+// SPDX-License-Identifier: GPL-3.0-or-later
+//
+// Author(s)     : CGAL Spherical Parameterization contributors
+
+// The bijective map of least conformal distortion (named parameter least_distortion): where the balanced map of
+// shape-preserving weights is not reached (it folds, or for mean value does not exist), a minimum of
+//   F(x) = sum_f A_f * (sum_k cot(theta_k) |e'_k|^2) / (4 S_f),
+// the conformal distortion (MIPS) of the flat triangle through the three sphere points against the 3D triangle:
+// theta_k the 3D angles, A_f the 3D areas over their sum, e'_k the edges of the flat triangle, S_f its area signed by
+// the orientation the certificate tests (det(a, b, c) / (2 |c|), c the centroid: |N_f| / 2 would not vanish where three points of one great circle make a degenerate spherical triangle). The term of a face is A_f times
+// (s1^2 + s2^2) / (2 s1 s2), s1, s2 the singular values of the affine map between the two triangles: at least
+// A_f (equality: similar triangles), and it tends to infinity as the face degenerates, so F is minimized over the open
+// set of bijective maps: a minimization, unlike the balance equations (a saddle), and its stationarity can be tested.
+// Newton's method in the tangent planes: per-face Hessians projected on their positive part until full steps are
+// accepted, then the whole Hessian while its factorization stays positive definite; a Marquardt shift on the diagonal;
+// every trial point keeps every face positive. The manual's Method section says why and what it gives.
+
+#ifndef CGAL_SPHERICAL_PARAMETERIZATION_INTERNAL_STAGE3_LEAST_DISTORTION_H
+#define CGAL_SPHERICAL_PARAMETERIZATION_INTERNAL_STAGE3_LEAST_DISTORTION_H
+
+#include <CGAL/Spherical_parameterization/internal/Vector3.h>
+#include <CGAL/Spherical_parameterization/internal/iteration_driver.h>
+#include <CGAL/Spherical_parameterization/internal/stage3/sparse_factorization.h>
+
+#include <CGAL/Real_timer.h>
+
+#include <Eigen/Dense>
+#include <Eigen/Sparse>
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <limits>
+#include <vector>
+
+namespace CGAL {
+namespace Spherical_parameterization {
+namespace internal {
+
+struct Least_distortion_report
+{
+  bool started = false;    // the start had every face positive (in the orientation used here)
+  bool stationary = false; // every vertex's stationarity <= the tolerance (or its rounding floor)
+  bool out_of_time = false;
+  bool cancelled = false;
+  std::size_t newton_steps = 0;
+  double energy = -1.;           // F (3D areas summing to 1): 1 for a map whose every triangle is similar
+  double max_stationarity = -1.; // max_k sigma_k, 0 for the vertices within their rounding floor
+  std::size_t unstationary_vertices = 0;
+};
+
+namespace least_distortion_detail {
+
+using V3 = Eigen::Vector3d;
+using Vector9 = Eigen::Matrix<double, 9, 1>;
+using Matrix9 = Eigen::Matrix<double, 9, 9>;
+
+inline V3 to_eigen(const Vector3& v) { return V3(v.x, v.y, v.z); }
+
+inline Eigen::Matrix3d cross_matrix(const V3& v)
+{
+  Eigen::Matrix3d m;
+  m << 0, -v[2], v[1], v[2], 0, -v[0], -v[1], v[0], 0;
+  return m;
+}
+
+// The orientation seen from the origin, in the relative form (differences first: triangles with edges of 1e-10
+// keep their digits): ((b - a) x (c - a)) . (a + b + c) = 3 det(a, b, c).
+inline double orientation(const V3& a, const V3& b, const V3& c) { return (b - a).cross(c - a).dot(a + b + c); }
+
+struct Face_shape
+{
+  double weight = 0.; // A_f over the sum of the 3D areas
+  double cot[3] = {0., 0., 0.}; // of the 3D angle at each corner
+};
+
+// Where a face spans nearly a hemisphere its centroid c nears the origin: there |N| stays large while det -> 0 (the
+// orientation flips with no change of the flat triangle's shape), and det / |c| is 0 / 0. |c| is therefore taken as
+// sqrt(|c|^2 + centroid_floor^2), scaled so that small faces (|c| = 1) are unchanged: a barrier on det there too (the
+// tetrahedra of CGAL's data stalled at |c| = 3e-7 without it).
+constexpr double centroid_floor = 0.1;
+
+// F_f, and when asked its gradient and Hessian in the nine coordinates. s = N.c / |c| (twice the signed area; c the
+// centroid, N = (p1 - p0) x (p2 - p0), so N.c = det(p0, p1, p2)); Q = sum_k cot_k |e'_k|^2 (the face's cotangent form).
+inline double face_energy(const Face_shape& shape, const V3 (&p)[3], Vector9* gradient = nullptr,
+                          Matrix9* hessian = nullptr)
+{
+  const V3 e[3] = {p[2] - p[1], p[0] - p[2], p[1] - p[0]}; // e[k] opposite corner k
+  const V3 c = (p[0] + p[1] + p[2]) / 3.;
+  const double c_norm = std::sqrt(c.squaredNorm() + centroid_floor * centroid_floor);
+  const double det = (p[1] - p[0]).cross(p[2] - p[0]).dot(c);
+  const double scale = std::sqrt(1. + centroid_floor * centroid_floor);
+  const double s = scale * det / c_norm;
+  double q = 0.;
+  for(int k = 0; k < 3; ++k)
+    q += shape.cot[k] * e[k].squaredNorm();
+  const double energy = shape.weight * q / (2. * s); // s is twice the signed area
+  if(gradient == nullptr)
+    return energy;
+
+  // Q = p^T (L x I3) p with L the face's cotangent Laplacian.
+  Eigen::Matrix3d L = Eigen::Matrix3d::Zero();
+  for(int k = 0; k < 3; ++k)
+  {
+    const int i = (k + 1) % 3, j = (k + 2) % 3;
+    L(i, i) += shape.cot[k];
+    L(j, j) += shape.cot[k];
+    L(i, j) -= shape.cot[k];
+    L(j, i) -= shape.cot[k];
+  }
+  Vector9 grad_q, grad_det, grad_c;
+  for(int i = 0; i < 3; ++i)
+  {
+    grad_q.segment<3>(3 * i) = 2. * (L(i, 0) * p[0] + L(i, 1) * p[1] + L(i, 2) * p[2]);
+    grad_det.segment<3>(3 * i) = p[(i + 1) % 3].cross(p[(i + 2) % 3]);
+    grad_c.segment<3>(3 * i) = c / (3. * c_norm);
+  }
+  const Vector9 grad_s = scale * (grad_det / c_norm - det * grad_c / (c_norm * c_norm));
+  const double w = shape.weight / 2.;
+  *gradient = w * (grad_q / s - q * grad_s / (s * s));
+  if(hessian == nullptr)
+    return energy;
+
+  Matrix9 hess_q = Matrix9::Zero(), hess_det = Matrix9::Zero(), hess_c;
+  for(int i = 0; i < 3; ++i)
+  {
+    for(int j = 0; j < 3; ++j)
+      hess_q.block<3, 3>(3 * i, 3 * j) = 2. * L(i, j) * Eigen::Matrix3d::Identity();
+    const int j = (i + 1) % 3, k = (i + 2) % 3;
+    hess_det.block<3, 3>(3 * i, 3 * j) = -cross_matrix(p[k]);
+    hess_det.block<3, 3>(3 * j, 3 * i) = cross_matrix(p[k]);
+  }
+  const Eigen::Matrix3d hess_c1 =
+      (Eigen::Matrix3d::Identity() - c * c.transpose() / (c_norm * c_norm)) / (9. * c_norm);
+  for(int i = 0; i < 3; ++i)
+    for(int j = 0; j < 3; ++j)
+      hess_c.block<3, 3>(3 * i, 3 * j) = hess_c1;
+  const Matrix9 hess_s = scale * (hess_det / c_norm
+                         - (grad_det * grad_c.transpose() + grad_c * grad_det.transpose()) / (c_norm * c_norm)
+                         + 2. * det * grad_c * grad_c.transpose() / (c_norm * c_norm * c_norm)
+                         - det * hess_c / (c_norm * c_norm));
+  *hessian = w * (hess_q / s - (grad_q * grad_s.transpose() + grad_s * grad_q.transpose()) / (s * s)
+                  + 2. * q * grad_s * grad_s.transpose() / (s * s * s) - q * hess_s / (s * s));
+  return energy;
+}
+
+// The shapes of the 3D triangles (their cotangents, their areas over the sum); false if one is degenerate.
+inline bool face_shapes(const std::vector<std::array<int, 3>>& triangles, const std::vector<Vector3>& points,
+                        std::vector<Face_shape>& shapes)
+{
+  const std::size_t m = triangles.size();
+  shapes.assign(m, Face_shape());
+  double total_area = 0.;
+  for(std::size_t f = 0; f < m; ++f)
+  {
+    V3 corner[3];
+    for(int k = 0; k < 3; ++k)
+      corner[k] = to_eigen(points[triangles[f][k]]);
+    for(int k = 0; k < 3; ++k)
+    {
+      const V3 u = corner[(k + 1) % 3] - corner[k], v = corner[(k + 2) % 3] - corner[k];
+      shapes[f].cot[k] = u.dot(v) / u.cross(v).norm();
+    }
+    shapes[f].weight = 0.5 * (corner[1] - corner[0]).cross(corner[2] - corner[0]).norm();
+    total_area += shapes[f].weight;
+  }
+  for(Face_shape& shape : shapes)
+  {
+    shape.weight /= total_area;
+    if(!std::isfinite(shape.weight) || !std::isfinite(shape.cot[0]) || !std::isfinite(shape.cot[1])
+       || !std::isfinite(shape.cot[2]))
+      return false; // a degenerate 3D triangle: no shape to keep
+  }
+  return true;
+}
+
+} // namespace least_distortion_detail
+
+// F of the map x (1 when every flat triangle is similar to its 3D triangle); +infinity when a face is not positive
+// (in the relative orientation used here) or a 3D triangle is degenerate.
+inline double conformal_distortion(const std::vector<std::array<int, 3>>& triangles, const std::vector<Vector3>& points,
+                                   const std::vector<Vector3>& x)
+{
+  using namespace least_distortion_detail;
+  std::vector<Face_shape> shapes;
+  if(!face_shapes(triangles, points, shapes))
+    return std::numeric_limits<double>::infinity();
+  double energy = 0.;
+  for(std::size_t f = 0; f < triangles.size(); ++f)
+  {
+    V3 p[3];
+    for(int k = 0; k < 3; ++k)
+      p[k] = to_eigen(x[triangles[f][k]]).normalized();
+    if(!(orientation(p[0], p[1], p[2]) > 0.))
+      return std::numeric_limits<double>::infinity();
+    energy += face_energy(shapes[f], p);
+  }
+  return energy;
+}
+
+// Minimizes F from `x` (unit vectors, every face positive) over bijective maps; `x` holds the last iterate (each one
+// is better than the one before). Stops when every vertex is stationary, at `options.max_newton_sweeps`, the time
+// budget, a cancel, or when no step lowers F any more.
+// Stationarity of vertex k: sigma_k = |grad_k F| h_k / a_k, h_k the mean length of its spherical edges, a_k the
+// weight of its faces: the change of F, relative to its faces' share, per move of its own edge length. Its rounding
+// floor (positions rounded to double) is about 1e-16 |H_kk| h_k / a_k, that is 1e-16 / h_k: the test is
+// sigma_k <= max(tolerance, 64 * 2^-52 / h_k).
+inline Least_distortion_report minimize_conformal_distortion(const std::vector<std::array<int, 3>>& triangles,
+                                                             const std::vector<Vector3>& points, std::vector<Vector3>& x,
+                                                             const Iteration_options& options,
+                                                             const CGAL::Real_timer& clock)
+{
+  using namespace least_distortion_detail;
+  Least_distortion_report report;
+  const int n = static_cast<int>(x.size());
+  const std::size_t m = triangles.size();
+  std::vector<V3> y(n);
+  for(int i = 0; i < n; ++i)
+    y[i] = to_eigen(x[i]).normalized();
+  std::vector<Face_shape> shapes;
+  if(!face_shapes(triangles, points, shapes))
+    return report;
+
+  auto corners = [&](const std::vector<V3>& z, std::size_t f, V3 (&p)[3]) {
+    for(int k = 0; k < 3; ++k)
+      p[k] = z[triangles[f][k]];
+  };
+  auto all_positive = [&](const std::vector<V3>& z) {
+    for(const std::array<int, 3>& t : triangles)
+      if(!(orientation(z[t[0]], z[t[1]], z[t[2]]) > 0.))
+        return false;
+    return true;
+  };
+  // F(z) - F(y) face by face (the total would lose the small faces' changes); +infinity if a face is not positive.
+  auto energy_change = [&](const std::vector<V3>& z) {
+    double change = 0.;
+    V3 p[3], q[3];
+    for(std::size_t f = 0; f < m; ++f)
+    {
+      corners(z, f, p);
+      if(!(orientation(p[0], p[1], p[2]) > 0.))
+        return std::numeric_limits<double>::infinity();
+      corners(y, f, q);
+      change += face_energy(shapes[f], p) - face_energy(shapes[f], q);
+    }
+    return change;
+  };
+  if(!all_positive(y))
+    return report;
+  report.started = true;
+
+  const double floor_scale = 64. * std::numeric_limits<double>::epsilon();
+  std::vector<V3> t1(n), t2(n), trial(n);
+  std::vector<double> edge_sum(n), face_weight(n);
+  std::vector<int> edge_count(n);
+  Eigen::VectorXd gradient(2 * n);
+  std::vector<Eigen::Triplet<double>> entries;
+  Sparse_ldlt factorization;
+  double marquardt = 1e-6;
+  bool whole_hessian = false;
+  std::size_t failures = 0;
+  // Each pass measures the current iterate (F, its gradient and stationarity: what the report gives), then stops or
+  // takes a step.
+  for(;;)
+  {
+    for(int i = 0; i < n; ++i)
+    {
+      const V3 a = std::abs(y[i][0]) < 0.6 ? V3(1., 0., 0.) : V3(0., 1., 0.);
+      t1[i] = (a - a.dot(y[i]) * y[i]).normalized();
+      t2[i] = y[i].cross(t1[i]);
+    }
+    gradient.setZero();
+    entries.clear();
+    std::fill(edge_sum.begin(), edge_sum.end(), 0.);
+    std::fill(face_weight.begin(), face_weight.end(), 0.);
+    std::fill(edge_count.begin(), edge_count.end(), 0);
+    report.energy = 0.;
+    for(std::size_t f = 0; f < m; ++f)
+    {
+      V3 p[3];
+      corners(y, f, p);
+      Vector9 g;
+      Matrix9 h;
+      report.energy += face_energy(shapes[f], p, &g, &h);
+      Eigen::Matrix<double, 9, 6> basis = Eigen::Matrix<double, 9, 6>::Zero();
+      for(int k = 0; k < 3; ++k)
+      {
+        const int v = triangles[f][k];
+        basis.block<3, 1>(3 * k, 2 * k) = t1[v];
+        basis.block<3, 1>(3 * k, 2 * k + 1) = t2[v];
+        edge_sum[v] += (p[(k + 1) % 3] - p[k]).norm() + (p[(k + 2) % 3] - p[k]).norm();
+        edge_count[v] += 2;
+        face_weight[v] += shapes[f].weight;
+      }
+      const Eigen::Matrix<double, 6, 1> g_tangent = basis.transpose() * g;
+      Eigen::Matrix<double, 6, 6> h_tangent = basis.transpose() * h * basis;
+      // Second order of the retraction (y + v) / |y + v| = y + v - |v|^2 y / 2: minus the radial gradient.
+      for(int k = 0; k < 3; ++k)
+      {
+        const double radial = g.segment<3>(3 * k).dot(p[k]);
+        h_tangent(2 * k, 2 * k) -= radial;
+        h_tangent(2 * k + 1, 2 * k + 1) -= radial;
+      }
+      if(!whole_hessian)
+      {
+        Eigen::SelfAdjointEigenSolver<Eigen::Matrix<double, 6, 6>> eigen(h_tangent);
+        h_tangent = eigen.eigenvectors() * eigen.eigenvalues().cwiseMax(0.).asDiagonal()
+                    * eigen.eigenvectors().transpose();
+      }
+      for(int a = 0; a < 3; ++a)
+      {
+        const int va = triangles[f][a];
+        gradient.segment<2>(2 * va) += g_tangent.segment<2>(2 * a);
+        for(int b = 0; b < 3; ++b)
+          for(int r = 0; r < 2; ++r)
+            for(int s = 0; s < 2; ++s)
+            {
+              const int row = 2 * va + r, col = 2 * triangles[f][b] + s;
+              if(row >= col)
+                entries.emplace_back(row, col, h_tangent(2 * a + r, 2 * b + s));
+            }
+      }
+    }
+    report.max_stationarity = 0.;
+    report.unstationary_vertices = 0;
+    for(int i = 0; i < n; ++i)
+    {
+      const double h = edge_sum[i] / std::max(1, edge_count[i]);
+      const double sigma = gradient.segment<2>(2 * i).norm() * h / face_weight[i];
+      if(sigma <= floor_scale / h)
+        continue; // within its rounding floor: counts as stationary (and as 0 in the maximum)
+      report.max_stationarity = std::max(report.max_stationarity, sigma);
+      if(sigma > options.tolerance)
+        ++report.unstationary_vertices;
+    }
+    if(options.progress
+       && !options.progress("least distortion", report.newton_steps, report.max_stationarity, 0))
+    {
+      report.cancelled = true;
+      break;
+    }
+    if(report.unstationary_vertices == 0)
+    {
+      report.stationary = true;
+      break;
+    }
+    if(report.newton_steps >= options.max_newton_sweeps)
+      break;
+    if(options.cancel_requested())
+    {
+      report.cancelled = true;
+      break;
+    }
+    if(past_time_budget(options, clock))
+    {
+      report.out_of_time = true;
+      break;
+    }
+
+    // Scaled symmetrically to a unit diagonal before it is factorized: the scales of the map differ by orders of
+    // magnitude (thin limbs squeezed to edges of 1e-8 give diagonal entries of 1e16 and more), and unscaled, the
+    // factorization's rounding swamped the steps of the large triangles (CGAL's cow: one vertex stuck at
+    // stationarity 0.013 for 2,000 steps, pivots from 190 to 1.4e17).
+    Eigen::SparseMatrix<double> hessian(2 * n, 2 * n);
+    hessian.setFromTriplets(entries.begin(), entries.end());
+    Eigen::VectorXd scaling(2 * n);
+    for(int i = 0; i < 2 * n; ++i)
+    {
+      const double d = hessian.coeff(i, i);
+      scaling[i] = d > 0. ? 1. / std::sqrt(d) : 1.;
+    }
+    for(int k = 0; k < hessian.outerSize(); ++k)
+      for(Eigen::SparseMatrix<double>::InnerIterator it(hessian, k); it; ++it)
+        it.valueRef() *= scaling[it.row()] * scaling[it.col()];
+    for(int i = 0; i < 2 * n; ++i)
+      hessian.coeffRef(i, i) += marquardt + 1e-12;
+    const bool factorized = factorization.factorize(hessian);
+    // The whole Hessian is used while its factorization has no pivot below -1e-6 times the largest: the rotations
+    // (three exact zeros) and the nearly invariant boosts leave pivots of rounding size and either sign, and with a
+    // strict test it was refused at nearly every step (CGAL's hand, before the scaling below: 69 steps to
+    // stationarity instead of 47).
+    const double pivot_floor = -1e-6 * factorization.solver().vectorD().maxCoeff();
+    if(whole_hessian && (!factorized || factorization.solver().vectorD().minCoeff() <= pivot_floor))
+    {
+      whole_hessian = false; // not positive definite here: the projected Hessians again
+      continue;
+    }
+    if(!factorized)
+      break;
+    const Eigen::VectorXd step =
+        (scaling.array() * factorization.solver().solve((-gradient.array() * scaling.array()).matrix()).array())
+            .matrix();
+    const double slope = gradient.dot(step);
+    double longest = 0.;
+    for(int i = 0; i < n; ++i)
+      longest = std::max(longest, step.segment<2>(2 * i).norm());
+    // At most half a radian per vertex and step; then halving until every face stays positive and F falls enough.
+    double t = std::min(1., 0.5 / longest), accepted = 0.;
+    for(int tries = 0; tries < 60 && slope < 0.; ++tries, t *= 0.5)
+    {
+      for(int i = 0; i < n; ++i)
+        trial[i] = (y[i] + t * (step[2 * i] * t1[i] + step[2 * i + 1] * t2[i])).normalized();
+      if(energy_change(trial) <= 1e-4 * t * slope)
+      {
+        accepted = t;
+        break;
+      }
+    }
+    ++report.newton_steps;
+    if(accepted == 0.)
+    {
+      whole_hessian = false;
+      marquardt *= 10.;
+      if(++failures > 8)
+        break; // no step lowers F: as stationary as double precision lets it be
+      continue;
+    }
+    failures = 0;
+    y.swap(trial);
+    if(accepted == 1.)
+      marquardt = std::max(1e-8, marquardt / 10.);
+    else if(accepted < 0.1)
+      marquardt *= 4.;
+    whole_hessian = accepted == 1.;
+  }
+  for(int i = 0; i < n; ++i)
+    x[i] = Vector3(y[i][0], y[i][1], y[i][2]);
+  return report;
+}
+
+} // namespace internal
+} // namespace Spherical_parameterization
+} // namespace CGAL
+
+#endif // CGAL_SPHERICAL_PARAMETERIZATION_INTERNAL_STAGE3_LEAST_DISTORTION_H
