@@ -118,7 +118,8 @@ void print_usage(std::ostream& out)
          "                        balanced for the held weights: counted in the output; experimental)\n"
          "      --least-distortion  where the map of the weights given ends unbalanced or not bijective\n"
          "                        (cotangent, mean_value): return the bijective map of least conformal\n"
-         "                        distortion instead, success when that minimum is stationary (experimental)\n"
+         "                        distortion instead, success when that minimum is stationary; it replaces\n"
+         "                        cotangent weights' last resort, the cautious Newton (experimental)\n"
          "  -t, --tolerance T     stop when every imbalance e_i <= T (default 1e-6); mean_value weights, which\n"
          "                        have no exact solution: when their least-squares problem is stationary to T\n"
          "      --gauss-seidel-sweeps N  cap of stage 2, the paper's projected Gauss-Seidel (default: the\n"
@@ -623,7 +624,7 @@ void print_text(std::ostream& out, const SP::Result& r, const Run_figures& run)
   if(r.least_distortion_map)
     out << "least distortion: the bijective map of least conformal distortion (--least-distortion), not a balanced "
            "map of the weights given: distortion "
-        << r.distortion_energy << " (1: every triangle similar), max stationarity " << r.max_distortion_stationarity
+        << r.distortion_energy << " (about 1: every small triangle keeps its shape), max stationarity " << r.max_distortion_stationarity
         << " after " << r.least_distortion_steps << " Newton steps\n";
   if(r.held_weight_vertices > 0)
     out << "held weights:    " << r.held_weight_vertices << " of the " << r.number_of_vertices

@@ -1245,6 +1245,43 @@ TEST(LeastDistortion, FaceEnergyDerivatives)
   EXPECT_TRUE(std::isfinite(regular) != std::isfinite(reversed)); // one orientation is positive, not both
 }
 
+// The minimization itself on an icosahedron from a perturbed map: it takes steps, ends stationary, reports the energy
+// of the map it returns, never above the start's; started again from its result, it is stationary without a step.
+TEST(LeastDistortion, MinimizesFromAPerturbedMap)
+{
+  Mesh mesh;
+  CGAL::make_icosahedron(mesh, Point(0, 0, 0), 1.);
+  SP::internal::Mesh_arrays arrays =
+      SP::internal::read_face_graph(mesh, get(CGAL::vertex_point, mesh), get(CGAL::vertex_index, mesh));
+  std::vector<SP::internal::Vector3> x = arrays.points;
+  std::mt19937 random(7);
+  std::uniform_real_distribution<double> noise(-0.08, 0.08);
+  for(SP::internal::Vector3& p : x)
+  {
+    p = SP::internal::Vector3(p.x + noise(random), p.y + noise(random), p.z + noise(random));
+    p = (1. / std::sqrt(SP::internal::dot(p, p))) * p;
+  }
+  const double start = SP::internal::conformal_distortion(arrays.triangles, arrays.points, x);
+  ASSERT_TRUE(std::isfinite(start));
+  SP::internal::Iteration_options options;
+  CGAL::Real_timer clock;
+  clock.start();
+  const SP::internal::Least_distortion_report report =
+      SP::internal::minimize_conformal_distortion(arrays.triangles, arrays.points, x, options, clock);
+  EXPECT_TRUE(report.started);
+  EXPECT_TRUE(report.stationary);
+  EXPECT_GT(report.newton_steps, 0u);
+  EXPECT_LE(report.max_stationarity, 1e-6);
+  const double reached = SP::internal::conformal_distortion(arrays.triangles, arrays.points, x);
+  EXPECT_NEAR(report.energy, reached, 1e-12 * reached);
+  EXPECT_LT(reached, start);
+  EXPECT_GE(reached, 1.);
+  const SP::internal::Least_distortion_report again =
+      SP::internal::minimize_conformal_distortion(arrays.triangles, arrays.points, x, options, clock);
+  EXPECT_TRUE(again.stationary);
+  EXPECT_EQ(again.newton_steps, 0u);
+}
+
 // The public option: where the map of cotangent or mean-value weights ends unconverged (u.off; the tetrahedron, whose
 // cotangent weights provably have no balanced bijective map), the bijective map of least conformal distortion, with
 // status OK when it is stationary; on a mesh whose cotangent map is balanced, that map.
@@ -1286,6 +1323,12 @@ TEST(SphericalParameterize, LeastDistortion)
     const SP::Result result = run("tetrahedron.off", SP::Weighting::COTANGENT, true, &with);
     EXPECT_EQ(result.status, SP::Error_code::OK) << result.message;
     EXPECT_TRUE(result.least_distortion_map);
+  }
+  {
+    // Tutte's weights keep their own ways to the end; here they converge, and the option changes nothing.
+    const SP::Result result = run("sphere966.off", SP::Weighting::UNIFORM, true, &with);
+    EXPECT_EQ(result.status, SP::Error_code::OK) << result.message;
+    EXPECT_FALSE(result.least_distortion_map);
   }
   {
     const SP::Result result = run("sphere966.off", SP::Weighting::COTANGENT, true, &with);

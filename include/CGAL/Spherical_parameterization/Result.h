@@ -98,15 +98,16 @@ struct Result
   double requested_weights_max_imbalance = -1.;
   /// With the named parameter `least_distortion`: the map returned is the bijective map of least conformal distortion
   /// (not a balanced map of the weights given, whose figures `max_imbalance` and the others still report), because
-  /// those weights' map ended unbalanced or not bijective. Then the convergence test is the stationarity of that
+  /// those weights' map ended unbalanced or not bijective (their last resort, the cautious Newton, is then left out). Then the convergence test is the stationarity of that
   /// minimum: `max_distortion_stationarity` at most the tolerance (or its rounding floor) at every vertex.
   bool least_distortion_map = false;
   /// The conformal distortion of the map returned when `least_distortion_map`: the mean, weighted by 3D area, of
   /// \f$(\sigma_1^2 + \sigma_2^2) / (2 \sigma_1 \sigma_2)\f$ over the affine maps from each 3D triangle to the flat
-  /// triangle through its sphere points (1 for similar triangles); -1 otherwise.
+  /// triangle through its sphere points, each term measured with the area signed by the sphere's orientation (so a
+  /// little more on faces large against the sphere): about 1 when every small triangle keeps its shape; -1 otherwise.
   double distortion_energy = -1.;
-  /// When `least_distortion_map`: the largest stationarity of that minimum over the vertices (the manual's Method
-  /// section defines it); -1 otherwise.
+  /// When `least_distortion_map`: the largest stationarity of that minimum over the vertices (the manual's
+  /// "Converged" section defines it; vertices within their rounding floor count as 0); -1 otherwise.
   double max_distortion_stationarity = -1.;
   /// When `least_distortion_map`: the Newton steps of that minimization; 0 otherwise.
   std::size_t least_distortion_steps = 0;

@@ -144,7 +144,10 @@ public:
     m_result.number_of_vertices = m_system.number_of_vertices;
     m_result.number_of_faces = m_system.triangles.size();
     m_iteration_options = m_options.iterations;
-    m_iteration_options.least_distortion_follows = m_options.least_distortion && !m_options.coarse_level;
+    // The cautious Newton gives way to the minimization only for weights other than Tutte's, and not where the held
+    // continuation (which comes after it) was asked for.
+    m_iteration_options.least_distortion_follows = m_options.least_distortion && !m_options.coarse_level
+                                                   && !m_options.hold_weights && !has_tutte_weights(m_system);
     if(multilevel_applies())
       m_multilevel_tried = true;
     if(m_multilevel_tried && multilevel_start(x))
@@ -655,14 +658,21 @@ private:
   // Tutte's map where some of its faces are not positive in double precision. It replaces x only when certified.
   void least_distortion(std::vector<Vector3>& x)
   {
-    if(m_cancelled || (!m_no_balanced_solution && converged_and_bijective(x)))
+    // Not under the paper's criterion (its tolerance bounds Res, not a stationarity), nor past the time budget (Tutte's
+    // map would cost a whole stage 1 more).
+    if(m_cancelled || m_newton.out_of_time || m_iteration_options.convergence_test != Convergence_test::IMBALANCE
+       || (!m_no_balanced_solution && converged_and_bijective(x)))
       return;
+    Iteration_options options = m_options.iterations;
+    if(options.max_seconds >= 0.)
+    {
+      options.max_seconds -= m_options.call_clock.time();
+      if(options.max_seconds <= 0.)
+        return;
+    }
     CGAL::Real_timer clock;
     clock.start();
-    Iteration_options options = m_options.iterations;
-    options.max_newton_sweeps = options.tuning.least_distortion_max_steps;
-    if(options.max_seconds >= 0.)
-      options.max_seconds = std::max(0., options.max_seconds - m_options.call_clock.time());
+    options.max_newton_sweeps = std::min(options.max_newton_sweeps, options.tuning.least_distortion_max_steps);
     // The start of lower distortion: the map reached, or Tutte's map (the maps where cotangent weights end often
     // squeeze faces to the limits of double precision, which a minimization of their shape cannot undo: CGAL's man
     // ended at distortion 12,000 from there after 110 s, 9.9 degrees of angle error from Tutte's map).
@@ -686,12 +696,13 @@ private:
                 << " Newton steps, distortion " << report.energy << ", max stationarity " << report.max_stationarity
                 << (report.stationary ? " (stationary)" : "") << ", " << clock.time() << " s\n";
     m_result.newton.seconds += clock.time();
-    // Only a minimization that ran replaces the map, and only if certified: a start alone (no time left for a step)
-    // is no least-distortion map.
-    if(!report.started || report.newton_steps == 0 || !(report.energy < reached)
+    // Only a minimization that ran (a step taken, or a start found stationary) replaces the map, and only if
+    // certified: a start alone (no time left for a step) is no least-distortion map.
+    if(!report.started || (report.newton_steps == 0 && !report.stationary) || !(report.energy < reached)
        || !certify(m_system.triangles, y).bijective)
       return;
     x.swap(y);
+    m_system.regularized_tips.clear(); // they belonged to the map replaced
     m_result.least_distortion_map = true;
     m_result.distortion_energy = report.energy;
     m_result.max_distortion_stationarity = report.max_stationarity;
@@ -764,7 +775,8 @@ private:
            << m_result.least_distortion_steps << " Newton steps]";
       m_result.message += note.str();
     }
-    if(!m_system.symmetric && m_iteration_options.convergence_test == Convergence_test::IMBALANCE)
+    if(!m_system.symmetric && m_iteration_options.convergence_test == Convergence_test::IMBALANCE
+       && !m_result.least_distortion_map)
     {
       std::ostringstream note;
       note << " [non-symmetric weights: the test is the stationarity of their least-squares problem, max "

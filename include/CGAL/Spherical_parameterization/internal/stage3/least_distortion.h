@@ -11,8 +11,10 @@
 // the conformal distortion (MIPS) of the flat triangle through the three sphere points against the 3D triangle:
 // theta_k the 3D angles, A_f the 3D areas over their sum, e'_k the edges of the flat triangle, S_f its area signed by
 // the orientation the certificate tests (det(a, b, c) / (2 |c|), c the centroid: |N_f| / 2 would not vanish where three points of one great circle make a degenerate spherical triangle). The term of a face is A_f times
-// (s1^2 + s2^2) / (2 s1 s2), s1, s2 the singular values of the affine map between the two triangles: at least
-// A_f (equality: similar triangles), and it tends to infinity as the face degenerates, so F is minimized over the open
+// (s1^2 + s2^2) / (2 s1 s2) (s1, s2 the singular values of the affine map between the two triangles) times |N_f| /
+// (2 S_f), which is 1 for faces small against the sphere and a little above 1 for large ones (the regular
+// tetrahedron: F = 1.04): at least A_f, about A_f for similar small triangles, and infinite as the face degenerates
+// on the sphere, so F is minimized over the open
 // set of bijective maps: a minimization, unlike the balance equations (a saddle), and its stationarity can be tested.
 // Newton's method in the tangent planes: per-face Hessians projected on their positive part until full steps are
 // accepted, then the whole Hessian while its factorization stays positive definite; a Marquardt shift on the diagonal;
@@ -46,8 +48,8 @@ struct Least_distortion_report
   bool stationary = false; // every vertex's stationarity <= the tolerance (or its rounding floor)
   bool out_of_time = false;
   bool cancelled = false;
-  std::size_t newton_steps = 0;
-  double energy = -1.;           // F (3D areas summing to 1): 1 for a map whose every triangle is similar
+  std::size_t newton_steps = 0; // steps taken (accepted by the line search)
+  double energy = -1.; // F (3D areas summing to 1): about 1 when every small triangle keeps its shape
   double max_stationarity = -1.; // max_k sigma_k, 0 for the vertices within their rounding floor
   std::size_t unstationary_vertices = 0;
 };
@@ -204,7 +206,7 @@ inline double conformal_distortion(const std::vector<std::array<int, 3>>& triang
 // Minimizes F from `x` (unit vectors, every face positive) over bijective maps; `x` holds the last iterate (each one
 // is better than the one before). Stops when every vertex is stationary, at `options.max_newton_sweeps`, the time
 // budget, a cancel, or when no step lowers F any more.
-// Stationarity of vertex k: sigma_k = |grad_k F| h_k / a_k, h_k the mean length of its spherical edges, a_k the
+// Stationarity of vertex k: sigma_k = |grad_k F| h_k / a_k, h_k the mean chord length of its edges, a_k the
 // weight of its faces: the change of F, relative to its faces' share, per move of its own edge length. Its rounding
 // floor (positions rounded to double) is about 1e-16 |H_kk| h_k / a_k, that is 1e-16 / h_k: the test is
 // sigma_k <= max(tolerance, 64 * 2^-52 / h_k).
@@ -398,7 +400,8 @@ inline Least_distortion_report minimize_conformal_distortion(const std::vector<s
     for(int i = 0; i < n; ++i)
       longest = std::max(longest, step.segment<2>(2 * i).norm());
     // At most half a radian per vertex and step; then halving until every face stays positive and F falls enough.
-    double t = std::min(1., 0.5 / longest), accepted = 0.;
+    const double first = std::min(1., 0.5 / longest);
+    double t = first, accepted = 0.;
     for(int tries = 0; tries < 60 && slope < 0.; ++tries, t *= 0.5)
     {
       for(int i = 0; i < n; ++i)
@@ -409,22 +412,23 @@ inline Least_distortion_report minimize_conformal_distortion(const std::vector<s
         break;
       }
     }
-    ++report.newton_steps;
     if(accepted == 0.)
     {
       whole_hessian = false;
       marquardt *= 10.;
       if(++failures > 8)
-        break; // no step lowers F: as stationary as double precision lets it be
+        break; // no step lowers F any more (stationarity not reached: the report says so)
       continue;
     }
+    ++report.newton_steps;
     failures = 0;
     y.swap(trial);
-    if(accepted == 1.)
+    // Judged against the first trial length (a full step, or the half-radian cap).
+    if(accepted == first)
       marquardt = std::max(1e-8, marquardt / 10.);
-    else if(accepted < 0.1)
+    else if(accepted < 0.1 * first)
       marquardt *= 4.;
-    whole_hessian = accepted == 1.;
+    whole_hessian = accepted == first;
   }
   for(int i = 0; i < n; ++i)
     x[i] = Vector3(y[i][0], y[i][1], y[i][2]);
