@@ -236,17 +236,18 @@ inline Least_distortion_report minimize_conformal_distortion(const std::vector<s
         return false;
     return true;
   };
-  // F(z) - F(y) face by face (the total would lose the small faces' changes); +infinity if a face is not positive.
+  // F(z) - F(y) face by face (the total would lose the small faces' changes), F(y)'s terms as the last assembly
+  // computed them; +infinity if a face is not positive.
+  std::vector<double> current_terms(m, 0.);
   auto energy_change = [&](const std::vector<V3>& z) {
     double change = 0.;
-    V3 p[3], q[3];
+    V3 p[3];
     for(std::size_t f = 0; f < m; ++f)
     {
       corners(z, f, p);
       if(!(orientation(p[0], p[1], p[2]) > 0.))
         return std::numeric_limits<double>::infinity();
-      corners(y, f, q);
-      change += face_energy(shapes[f], p) - face_energy(shapes[f], q);
+      change += face_energy(shapes[f], p) - current_terms[f];
     }
     return change;
   };
@@ -286,7 +287,8 @@ inline Least_distortion_report minimize_conformal_distortion(const std::vector<s
       corners(y, f, p);
       Vector9 g;
       Matrix9 h;
-      report.energy += face_energy(shapes[f], p, &g, &h);
+      current_terms[f] = face_energy(shapes[f], p, &g, &h);
+      report.energy += current_terms[f];
       Eigen::Matrix<double, 9, 6> basis = Eigen::Matrix<double, 9, 6>::Zero();
       for(int k = 0; k < 3; ++k)
       {
