@@ -13,6 +13,7 @@
 #include <CGAL/Spherical_parameterization/internal/stage3/constrained_balance.h>
 #include <CGAL/Spherical_parameterization/internal/stage3/imbalance_least_squares.h>
 #include <CGAL/Spherical_parameterization/internal/stage3/least_distortion.h>
+#include <CGAL/Spherical_parameterization/internal/stage3/multilevel_least_distortion.h>
 #include <CGAL/Spherical_parameterization/is_bijective_on_sphere.h> // certificate and distortion, through the header kept for earlier code
 #include <CGAL/Spherical_parameterization/spherical_parameterize.h>
 
@@ -944,6 +945,16 @@ TEST(TangentKrylovSystem, FullStepsConvergeWithFewMinresIterations)
   EXPECT_LT(imbalance[m - 2], 1e-2 * imbalance[m - 3]);
 }
 
+// Tutte's balanced map of a coarse level, from its two disks (no multilevel start of its own).
+SP::Result two_disk_tutte_map(const SPI::Mesh_arrays& coarse, std::vector<SPI::Vector3>& x)
+{
+  SPI::Sphere_system system = system_of(coarse);
+  SPI::Pipeline_options options;
+  options.multilevel = false;
+  const SP::Default_disk_solver_traits solver;
+  return SPI::Sphere_mapper<SP::Default_disk_solver_traits>(coarse, system, options, solver).map(x);
+}
+
 // The multilevel start's coarsening keeps a valid closed genus-0 mesh, and the way back keeps a bijective coarse map
 // bijective: each removed vertex is inserted where its fan is positive (up to rounding on the tiniest triangles).
 TEST(MeshCoarsening, CoarseningAndProlongationKeepGenusZeroAndPositiveFans)
@@ -962,14 +973,8 @@ TEST(MeshCoarsening, CoarseningAndProlongationKeepGenusZeroAndPositiveFans)
       coarse_soup.polygons.push_back({t[0], t[1], t[2]});
     const SP::Input_check check = SPI::check_mesh_arrays(coarse_soup);
     EXPECT_TRUE(check) << name << ": " << check.message;
-    SPI::Sphere_system coarse_system = system_of(coarsening.coarse);
     std::vector<SPI::Vector3> coarse_x;
-    SPI::Pipeline_options options;
-    options.multilevel = false;
-    const SP::Default_disk_solver_traits solver;
-    const SP::Result coarse =
-        SPI::Sphere_mapper<SP::Default_disk_solver_traits>(coarsening.coarse, coarse_system, options, solver)
-            .map(coarse_x);
+    const SP::Result coarse = two_disk_tutte_map(coarsening.coarse, coarse_x);
     ASSERT_EQ(coarse.status, SP::Error_code::OK) << name << ": " << coarse.message;
     std::vector<SPI::Vector3> x;
     const std::size_t folded = SPI::prolong(coarsening, coarse_x, x);
@@ -979,6 +984,71 @@ TEST(MeshCoarsening, CoarseningAndProlongationKeepGenusZeroAndPositiveFans)
     EXPECT_LE(certificate.flipped_faces, system.triangles.size() / 100) << name;
     EXPECT_NEAR(certificate.total_signed_area, 4. * CGAL_PI, 1e-6) << name << ": the map carried back has degree 1";
   }
+}
+
+// Inserted at the centre of its ring's kernel (the least-distortion multilevel start), every removed vertex finds a
+// positive fan: the map carried back is bijective.
+TEST(MeshCoarsening, KernelCentreInsertionKeepsTheMapBijective)
+{
+  for(const char* name : {"/gary_david.off", "/oded_springer.off"})
+  {
+    const SPI::Mesh_arrays arrays = arrays_of(read_mesh(shared_meshes + name));
+    const SPI::Coarsening coarsening = SPI::coarsen_mesh(arrays, arrays.points.size() / 4);
+    std::vector<SPI::Vector3> coarse_x;
+    const SP::Result coarse = two_disk_tutte_map(coarsening.coarse, coarse_x);
+    ASSERT_EQ(coarse.status, SP::Error_code::OK) << name << ": " << coarse.message;
+    std::vector<SPI::Vector3> x;
+    EXPECT_EQ(SPI::prolong(coarsening, coarse_x, x, SPI::Insertion::KERNEL_CENTRE), 0u) << name;
+    const SPI::Sphere_certificate certificate = SPI::certify(system_of(arrays).triangles, x);
+    EXPECT_TRUE(certificate.bijective) << name << ": " << certificate.flipped_faces << " flipped faces";
+  }
+  // A ring whose kernel is a thin wedge (a non-convex star): the centre lies inside, with every fan face positive.
+  const SPI::Vector3 north(0., 0., 1.);
+  std::vector<SPI::Vector3> ring;
+  for(const auto& p : std::vector<std::array<double, 2>>{{0.1, 0.}, {0.01, 0.01}, {0., 0.1}, {-0.1, 0.}, {0., -0.1}})
+  {
+    const SPI::Vector3 q(p[0], p[1], 1.);
+    ring.push_back((1. / SPI::length(q)) * q);
+  }
+  SPI::Vector3 centre;
+  ASSERT_TRUE(SPI::kernel_centre(north, ring, centre));
+  for(std::size_t m = 0; m < ring.size(); ++m)
+    EXPECT_TRUE(SPI::is_positive(centre, ring[m], ring[(m + 1) % ring.size()])) << m;
+}
+
+// The least-distortion minimization's multilevel start: coarser levels solved first, their map carried back; from it
+// the minimization on the mesh itself is stationary in a few dozen steps (CGAL's cheburashka from the Shrec data: 18).
+TEST(LeastDistortion, MultilevelStart)
+{
+  const SPI::Mesh_arrays arrays = arrays_of(read_mesh(shared_meshes + "/c3d_cheburashka.off"));
+  ASSERT_GE(arrays.points.size(), 4 * SPI::Solver_tuning().least_distortion_coarsest_vertices);
+  const SP::Default_disk_solver_traits solver;
+  auto tutte_map = [&](const SPI::Mesh_arrays& coarse, std::vector<SPI::Vector3>& y) {
+    SPI::Sphere_system system = system_of(coarse);
+    SPI::Pipeline_options options;
+    return SPI::Sphere_mapper<SP::Default_disk_solver_traits>(coarse, system, options, solver).map(y).status
+           == SP::Error_code::OK;
+  };
+  SPI::Iteration_options options;
+  CGAL::Real_timer clock;
+  clock.start();
+  std::vector<SPI::Vector3> x;
+  SPI::Multilevel_least_distortion_report levels;
+  ASSERT_TRUE(SPI::multilevel_least_distortion_start(arrays.points, arrays.triangles, tutte_map, options, clock, x,
+                                                     levels));
+  ASSERT_FALSE(levels.levels.empty());
+  for(std::size_t l = 1; l < levels.levels.size(); ++l)
+    EXPECT_LT(levels.levels[l - 1].vertices, levels.levels[l].vertices);
+  EXPECT_LT(levels.levels.back().vertices, arrays.points.size());
+  ASSERT_EQ(x.size(), arrays.points.size());
+  const double start = SPI::conformal_distortion(arrays.triangles, arrays.points, x);
+  ASSERT_TRUE(std::isfinite(start)); // every face positive
+  const SPI::Least_distortion_report report =
+      SPI::minimize_conformal_distortion(arrays.triangles, arrays.points, x, options, clock);
+  EXPECT_TRUE(report.stationary);
+  EXPECT_LE(report.newton_steps, 100u);
+  EXPECT_LT(report.energy, start);
+  EXPECT_TRUE(SPI::certify(arrays.triangles, x).bijective);
 }
 
 // The multilevel start (the default on meshes of 20,000 vertices or more) and the paper's two-disk start reach the

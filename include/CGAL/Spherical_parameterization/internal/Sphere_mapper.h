@@ -27,6 +27,7 @@
 #include <CGAL/Spherical_parameterization/internal/sphere_iterations.h>
 #include <CGAL/Spherical_parameterization/internal/stage3/global_newton.h>
 #include <CGAL/Spherical_parameterization/internal/stage3/least_distortion.h>
+#include <CGAL/Spherical_parameterization/internal/stage3/multilevel_least_distortion.h>
 #include <CGAL/Spherical_parameterization/internal/two_disk_partition.h>
 
 #include <CGAL/Eigen_solver_traits.h>
@@ -143,6 +144,11 @@ public:
     m_total.start();
     m_result.number_of_vertices = m_system.number_of_vertices;
     m_result.number_of_faces = m_system.triangles.size();
+    // With least_distortion and a time budget, the ways to the balanced map get a share of it, the minimization the
+    // rest (Solver_tuning::least_distortion_balance_share).
+    const double budget = m_options.iterations.max_seconds;
+    if(m_options.least_distortion && !m_options.coarse_level && budget >= 0. && !has_tutte_weights(m_system))
+      m_options.iterations.max_seconds = budget * m_options.iterations.tuning.least_distortion_balance_share;
     m_iteration_options = m_options.iterations;
     // The cautious Newton gives way to the minimization only for weights other than Tutte's, and not where the held
     // continuation (which comes after it) was asked for.
@@ -170,6 +176,7 @@ public:
       if(multilevel_fallback_applies(x))
         multilevel_fallback(x);
     }
+    m_options.iterations.max_seconds = budget;
     if(m_options.least_distortion && !m_options.coarse_level)
       least_distortion(x);
     certify_and_report(x);
@@ -622,18 +629,29 @@ private:
   }
 
   // Tutte's balanced map of this mesh by the whole pipeline with uniform weights; true when it is certified.
-  bool compute_tutte_map(std::vector<Vector3>& y)
+  bool compute_tutte_map(std::vector<Vector3>& y) { return uniform_map(m_mesh, m_system.triangles, false, y); }
+
+  // Tutte's balanced map of the mesh of `mesh.points` and `triangles` (this mesh, or a coarser level of it: then
+  // solved as the multilevel start's levels are, `coarse_level`).
+  bool uniform_map(const Mesh_arrays& mesh, const std::vector<std::array<int, 3>>& triangles, bool coarse_level,
+                   std::vector<Vector3>& y)
   {
-    Sphere_system uniform = make_connectivity(m_system.triangles, m_system.number_of_vertices);
+    Sphere_system uniform = make_connectivity(triangles, mesh.points.size());
     std::string message;
-    if(assign_weights(uniform, m_mesh, Weighting::UNIFORM, {}, message) != Error_code::OK)
+    if(assign_weights(uniform, mesh, Weighting::UNIFORM, {}, message) != Error_code::OK)
       return false;
     Pipeline_options uniform_options = m_options;
     uniform_options.weighting = Weighting::UNIFORM;
     uniform_options.admissible_weights = false;
     uniform_options.hold_weights = false;
     uniform_options.least_distortion = false;
-    const Result uniform_result = Sphere_mapper(m_mesh, uniform, uniform_options, m_solver).map(y);
+    if(coarse_level)
+    {
+      uniform_options.coarse_level = true;
+      uniform_options.iterations.tolerance = std::min(uniform_options.iterations.tolerance,
+                                                      m_options.iterations.tuning.multilevel_coarse_tolerance);
+    }
+    const Result uniform_result = Sphere_mapper(mesh, uniform, uniform_options, m_solver).map(y);
     // A cancel there (the progress callback, the command line's SIGTERM) is this call's cancel.
     m_cancelled = m_cancelled || uniform_result.status == Error_code::CANCELLED;
     return uniform_result.status == Error_code::OK;
@@ -660,7 +678,7 @@ private:
   {
     // Not under the paper's criterion (its tolerance bounds Res, not a stationarity), nor past the time budget (Tutte's
     // map would cost a whole stage 1 more).
-    if(m_cancelled || m_newton.out_of_time || m_iteration_options.convergence_test != Convergence_test::IMBALANCE
+    if(m_cancelled || m_iteration_options.convergence_test != Convergence_test::IMBALANCE
        || (!m_no_balanced_solution && converged_and_bijective(x)))
       return;
     Iteration_options options = m_options.iterations;
@@ -673,19 +691,35 @@ private:
     CGAL::Real_timer clock;
     clock.start();
     options.max_newton_sweeps = std::min(options.max_newton_sweeps, options.tuning.least_distortion_max_steps);
-    // The start of lower distortion: the map reached, or Tutte's map (the maps where cotangent weights end often
-    // squeeze faces to the limits of double precision, which a minimization of their shape cannot undo: CGAL's man
-    // ended at distortion 12,000 from there after 110 s, 9.9 degrees of angle error from Tutte's map).
-    std::vector<Vector3> y = x, tutte;
+    // The start of lower distortion: the map reached, or the multilevel start (multilevel_least_distortion.h), or on
+    // meshes too small for it Tutte's map (the maps where cotangent weights end often squeeze faces to the limits of
+    // double precision, which a minimization of their shape cannot undo: CGAL's man ended at distortion 12,000 from
+    // there after 110 s, 9.9 degrees of angle error from Tutte's map).
+    std::vector<Vector3> y = x, other;
     const double reached = conformal_distortion(m_system.triangles, m_mesh.points, x);
-    if(!has_tutte_weights(m_system) && compute_tutte_map(tutte) && !m_cancelled)
+    Multilevel_least_distortion_report levels;
+    const bool multilevel = multilevel_least_distortion_start(
+        m_mesh.points, m_system.triangles,
+        [this](const Mesh_arrays& coarse, std::vector<Vector3>& z) {
+          return uniform_map(coarse, coarse.triangles, true, z) && !m_cancelled;
+        },
+        options, clock, other, levels);
+    m_cancelled = m_cancelled || levels.cancelled;
+    const bool stopped = levels.cancelled || levels.out_of_time;
+    if(m_options.verbose)
+      for(const Least_distortion_level& level : levels.levels)
+        std::cerr << "least distortion: level of " << level.vertices << " vertices, " << level.newton_steps
+                  << " Newton steps" << (level.stationary ? " (stationary)" : "") << ", " << level.seconds << " s\n";
+    if(!multilevel && !stopped && !m_cancelled && !has_tutte_weights(m_system))
+      compute_tutte_map(other);
+    if(!other.empty() && !m_cancelled)
     {
-      const double from_tutte = conformal_distortion(m_system.triangles, m_mesh.points, tutte);
+      const double from_other = conformal_distortion(m_system.triangles, m_mesh.points, other);
       if(m_options.verbose)
-        std::cerr << "least distortion: distortion " << reached << " of the map reached, " << from_tutte
-                  << " of Tutte's map\n";
-      if(from_tutte < reached)
-        y.swap(tutte);
+        std::cerr << "least distortion: distortion " << reached << " of the map reached, " << from_other << " of "
+                  << (multilevel ? "the multilevel start" : "Tutte's map") << "\n";
+      if(from_other < reached)
+        y.swap(other);
     }
     Least_distortion_report report; // the time budget counts from `clock`'s start, Tutte's map included
     if(!m_cancelled)
@@ -825,7 +859,7 @@ private:
 
   const Mesh_arrays& m_mesh;
   Sphere_system& m_system;
-  const Pipeline_options& m_options;
+  Pipeline_options m_options; // a copy: with least_distortion, map() shares the time budget out (least_distortion())
   const SolverTraits& m_solver;
   Result m_result;
   CGAL::Real_timer m_total;

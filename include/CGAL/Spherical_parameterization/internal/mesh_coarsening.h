@@ -236,6 +236,97 @@ inline Coarsening coarsen_mesh(const Mesh_arrays& mesh, std::size_t target_verti
   return coarsen_mesh(mesh.points, mesh.triangles, target_vertices);
 }
 
+// The point of the sphere where the fan from it over `ring` (counter-clockwise) is positive with the largest margin:
+// the centre of the largest circle inside the ring's kernel, in the gnomonic projection about `centre` (which maps
+// great circles to straight lines, so that the kernel is an intersection of half-planes). The largest circle touches
+// three of the ring's edge lines: each triple is solved and the best one that keeps every constraint is taken (rings
+// have a few edges). False if the kernel is empty, or a ring vertex is not in the open hemisphere about `centre`.
+inline bool kernel_centre(const Vector3& centre, const std::vector<Vector3>& ring, Vector3& result)
+{
+  Vector3 e1, e2;
+  tangent_frame(centre, e1, e2);
+  const std::size_t d = ring.size();
+  std::vector<double> u(d), v(d);
+  for(std::size_t m = 0; m < d; ++m)
+  {
+    const double height = dot(ring[m], centre);
+    if(!(height > 0.))
+      return false;
+    const Vector3 q = ring[m] * (1. / height);
+    u[m] = dot(q, e1);
+    v[m] = dot(q, e2);
+  }
+  // Edge m, from ring[m] to ring[m + 1]: the signed distance of a point (a, b) to its left is
+  // normal_u[m] a + normal_v[m] b + offset[m].
+  std::vector<double> normal_u(d), normal_v(d), offset(d);
+  for(std::size_t m = 0; m < d; ++m)
+  {
+    const std::size_t next = (m + 1) % d;
+    const double du = u[next] - u[m], dv = v[next] - v[m];
+    const double edge = std::sqrt(du * du + dv * dv);
+    if(!(edge > 0.))
+      return false;
+    normal_u[m] = -dv / edge;
+    normal_v[m] = du / edge;
+    offset[m] = (dv * u[m] - du * v[m]) / edge;
+  }
+  double best_radius = 0., best_u = 0., best_v = 0.;
+  for(std::size_t i = 0; i < d; ++i)
+    for(std::size_t j = i + 1; j < d; ++j)
+      for(std::size_t k = j + 1; k < d; ++k)
+      {
+        const std::size_t rows[3] = {i, j, k};
+        double a[3][3], rhs[3];
+        for(int r = 0; r < 3; ++r)
+        {
+          a[r][0] = normal_u[rows[r]];
+          a[r][1] = normal_v[rows[r]];
+          a[r][2] = -1.;
+          rhs[r] = -offset[rows[r]];
+        }
+        // Cramer's rule on the 3x3 system (distance to each of the three lines = radius).
+        auto det3 = [](const double (&m)[3][3]) {
+          return m[0][0] * (m[1][1] * m[2][2] - m[1][2] * m[2][1]) - m[0][1] * (m[1][0] * m[2][2] - m[1][2] * m[2][0])
+                 + m[0][2] * (m[1][0] * m[2][1] - m[1][1] * m[2][0]);
+        };
+        const double det = det3(a);
+        if(!(std::abs(det) > 1e-12))
+          continue;
+        double solution[3];
+        for(int c = 0; c < 3; ++c)
+        {
+          double b[3][3];
+          for(int r = 0; r < 3; ++r)
+            for(int cc = 0; cc < 3; ++cc)
+              b[r][cc] = cc == c ? rhs[r] : a[r][cc];
+          solution[c] = det3(b) / det;
+        }
+        if(!(solution[2] > best_radius))
+          continue;
+        bool inside = true;
+        for(std::size_t m = 0; m < d && inside; ++m)
+          inside = normal_u[m] * solution[0] + normal_v[m] * solution[1] + offset[m] >= solution[2] * (1. - 1e-9);
+        if(inside)
+        {
+          best_radius = solution[2];
+          best_u = solution[0];
+          best_v = solution[1];
+        }
+      }
+  if(!(best_radius > 0.))
+    return false;
+  const Vector3 q = centre + best_u * e1 + best_v * e2;
+  result = q * (1. / length(q));
+  return true;
+}
+
+// Where prolong() puts a vertex inserted back.
+enum class Insertion
+{
+  RING_MEAN,     // the normalized mean of its ring (the balance point of uniform weights) where its fan is positive there
+  KERNEL_CENTRE  // kernel_centre(): as far from folding as the ring allows
+};
+
 // The fine map from the coarse one: kept vertices where the coarse map put them, removed ones inserted back in
 // the reverse order of their removal. A vertex goes to the normalized mean of its ring (the balance point of
 // uniform weights) when its fan of triangles is positive there. Otherwise it goes close to the vertex it was
@@ -245,7 +336,12 @@ inline Coarsening coarsen_mesh(const Mesh_arrays& mesh, std::size_t target_verti
 // coarse map squeezes a thin part to edges of 1e-11 (bull.off refined once), a plain determinant of the unit
 // vectors is rounding noise, and 432 of 4,649 vertices were left folded by it. Returns how many vertices found no
 // positive place (the mean is kept and the fan is folded; Newton's steps may still unfold it).
-inline std::size_t prolong(const Coarsening& coarsening, const std::vector<Vector3>& coarse_x, std::vector<Vector3>& x)
+// With Insertion::KERNEL_CENTRE, each vertex goes to the centre of its ring's kernel first (about the ring's mean,
+// then about v): the least-distortion minimization (stage3/least_distortion.h) cannot start from a folded map, and a
+// face left barely positive by the mean makes later rings' kernels empty (CGAL's man: 2 of 3,280 vertices left folded
+// from a map of least distortion with the mean, none with the kernel's centre).
+inline std::size_t prolong(const Coarsening& coarsening, const std::vector<Vector3>& coarse_x, std::vector<Vector3>& x,
+                           Insertion insertion = Insertion::RING_MEAN)
 {
   const std::size_t n = coarsening.coarse_index.size();
   CGAL_precondition(coarse_x.size() == coarsening.coarse.points.size());
@@ -254,6 +350,7 @@ inline std::size_t prolong(const Coarsening& coarsening, const std::vector<Vecto
     if(coarsening.coarse_index[i] >= 0)
       x[i] = coarse_x[static_cast<std::size_t>(coarsening.coarse_index[i])];
   std::size_t folded = 0;
+  std::vector<Vector3> ring_points;
   for(std::size_t k = coarsening.removed.size(); k-- > 0;)
   {
     const int* ring = coarsening.rings.data() + coarsening.ring_offsets[k];
@@ -270,6 +367,20 @@ inline std::size_t prolong(const Coarsening& coarsening, const std::vector<Vecto
       mean += at(m);
     Vector3& p = x[static_cast<std::size_t>(coarsening.removed[k])];
     p = mean * (1. / length(mean));
+    if(insertion == Insertion::KERNEL_CENTRE)
+    {
+      ring_points.resize(d);
+      for(std::size_t m = 0; m < d; ++m)
+        ring_points[m] = at(m);
+      Vector3 centre;
+      if((kernel_centre(p, ring_points, centre) && positive_fan(centre))
+         || (kernel_centre(x[static_cast<std::size_t>(coarsening.targets[k])], ring_points, centre)
+             && positive_fan(centre)))
+      {
+        p = centre;
+        continue;
+      }
+    }
     if(positive_fan(p))
       continue;
     // The ring around v counter-clockwise: ..., before, v, after, ...; the angle at v from `after` to `before`.

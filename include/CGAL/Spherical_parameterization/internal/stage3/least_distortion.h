@@ -203,13 +203,117 @@ inline double conformal_distortion(const std::vector<std::array<int, 3>>& triang
   return energy;
 }
 
+// Nonlinear Gauss-Seidel on F, the smoother of the multilevel start (multilevel_least_distortion.h): `sweeps` passes
+// over the vertices, each moved by a Newton step of its own faces' energy in its tangent plane (its 2x2 Hessian raised
+// to a condition number of at most 1000, at most half its shortest edge, halved until that energy falls and its faces
+// stay positive). Vertices carried back from a coarser level sit where their ring's kernel is widest, not where their
+// faces keep their shape: a few sweeps remove that local error for the cost of about one global Newton step.
+inline void smooth_conformal_distortion(const std::vector<std::array<int, 3>>& triangles,
+                                        const std::vector<Vector3>& points, std::vector<Vector3>& x, int sweeps)
+{
+  using namespace least_distortion_detail;
+  std::vector<Face_shape> shapes;
+  if(!face_shapes(triangles, points, shapes))
+    return;
+  const std::size_t n = x.size();
+  std::vector<std::size_t> offsets(n + 1, 0);
+  for(const std::array<int, 3>& t : triangles)
+    for(int k = 0; k < 3; ++k)
+      ++offsets[static_cast<std::size_t>(t[k]) + 1];
+  for(std::size_t i = 0; i < n; ++i)
+    offsets[i + 1] += offsets[i];
+  std::vector<std::pair<std::size_t, int>> corners(offsets[n]); // (face, corner) around each vertex
+  std::vector<std::size_t> fill(offsets.begin(), offsets.end() - 1);
+  for(std::size_t f = 0; f < triangles.size(); ++f)
+    for(int k = 0; k < 3; ++k)
+      corners[fill[static_cast<std::size_t>(triangles[f][k])]++] = {f, k};
+  std::vector<V3> y(n);
+  for(std::size_t i = 0; i < n; ++i)
+    y[i] = to_eigen(x[i]).normalized();
+  // The energy of the faces of v with v at `at`; with `gradient`, also its gradient and Hessian in v's coordinates.
+  auto local_energy = [&](std::size_t v, const V3& at, V3* gradient, Eigen::Matrix3d* hessian) {
+    double energy = 0.;
+    if(gradient != nullptr)
+    {
+      gradient->setZero();
+      hessian->setZero();
+    }
+    for(std::size_t c = offsets[v]; c < offsets[v + 1]; ++c)
+    {
+      const std::size_t f = corners[c].first;
+      const int k = corners[c].second;
+      V3 p[3];
+      for(int l = 0; l < 3; ++l)
+        p[l] = l == k ? at : y[static_cast<std::size_t>(triangles[f][l])];
+      if(!(orientation(p[0], p[1], p[2]) > 0.))
+        return std::numeric_limits<double>::infinity();
+      if(gradient == nullptr)
+      {
+        energy += face_energy(shapes[f], p);
+        continue;
+      }
+      Vector9 g;
+      Matrix9 h;
+      energy += face_energy(shapes[f], p, &g, &h);
+      *gradient += g.segment<3>(3 * k);
+      *hessian += h.block<3, 3>(3 * k, 3 * k);
+    }
+    return energy;
+  };
+  for(int sweep = 0; sweep < sweeps; ++sweep)
+    for(std::size_t v = 0; v < n; ++v)
+    {
+      V3 g;
+      Eigen::Matrix3d h;
+      const double before = local_energy(v, y[v], &g, &h);
+      if(!std::isfinite(before))
+        continue;
+      const V3 a = std::abs(y[v][0]) < 0.6 ? V3(1., 0., 0.) : V3(0., 1., 0.);
+      Eigen::Matrix<double, 3, 2> basis;
+      basis.col(0) = (a - a.dot(y[v]) * y[v]).normalized();
+      basis.col(1) = y[v].cross(V3(basis.col(0)));
+      const Eigen::Vector2d g2 = basis.transpose() * g;
+      // The retraction's second order, as in minimize_conformal_distortion().
+      Eigen::Matrix2d h2 = basis.transpose() * h * basis - g.dot(y[v]) * Eigen::Matrix2d::Identity();
+      const Eigen::SelfAdjointEigenSolver<Eigen::Matrix2d> eigen(h2);
+      const double lowest = eigen.eigenvalues()[0], highest = eigen.eigenvalues()[1];
+      if(!(highest > 0.))
+        continue;
+      if(lowest < 1e-3 * highest)
+        h2 += (1e-3 * highest - lowest) * Eigen::Matrix2d::Identity();
+      const V3 step = basis * Eigen::Vector2d(-h2.ldlt().solve(g2));
+      double shortest = std::numeric_limits<double>::infinity();
+      for(std::size_t c = offsets[v]; c < offsets[v + 1]; ++c)
+        for(int l = 0; l < 3; ++l)
+          if(l != corners[c].second)
+            shortest = std::min(shortest, (y[static_cast<std::size_t>(triangles[corners[c].first][l])] - y[v]).norm());
+      const double length = step.norm();
+      if(!(length > 0.) || !std::isfinite(length))
+        continue;
+      double t = std::min(1., 0.5 * shortest / length);
+      for(int tries = 0; tries < 30; ++tries, t *= 0.5)
+      {
+        const V3 q = (y[v] + t * step).normalized();
+        if(local_energy(v, q, nullptr, nullptr) < before)
+        {
+          y[v] = q;
+          break;
+        }
+      }
+    }
+  for(std::size_t i = 0; i < n; ++i)
+    x[i] = Vector3(y[i][0], y[i][1], y[i][2]);
+}
+
 // Minimizes F from `x` (unit vectors, every face positive) over bijective maps; `x` holds the last iterate (each one
 // is better than the one before). Stops when every vertex is stationary, at `options.max_newton_sweeps`, the time
 // budget, a cancel, or when no step lowers F any more.
 // Stationarity of vertex k: sigma_k = |grad_k F| h_k / a_k, h_k the mean chord length of its edges, a_k the
 // weight of its faces: the change of F, relative to its faces' share, per move of its own edge length. Its rounding
-// floor (positions rounded to double) is about 1e-16 |H_kk| h_k / a_k, that is 1e-16 / h_k: the test is
-// sigma_k <= max(tolerance, 64 * 2^-52 / h_k).
+// floor (positions rounded to double, |dx| ~ eps = 2^-52) is about eps r_k h_k / a_k, r_k the larger absolute row sum
+// of the vertex's rows of the Hessian: eps / h_k times a constant on faces of good shape, far more on slivers squeezed
+// to edges of 1e-11 (CGAL's man: the stationarity of such vertices wandered between 1e-3 and 2e-2 for 80 steps, within
+// a few times their r_k floor). The test is sigma_k <= max(tolerance, 64 eps / h_k, 8 eps r_k h_k / a_k).
 inline Least_distortion_report minimize_conformal_distortion(const std::vector<std::array<int, 3>>& triangles,
                                                              const std::vector<Vector3>& points, std::vector<Vector3>& x,
                                                              const Iteration_options& options,
@@ -256,9 +360,11 @@ inline Least_distortion_report minimize_conformal_distortion(const std::vector<s
   report.started = true;
 
   const double floor_scale = 64. * std::numeric_limits<double>::epsilon();
+  const double rounding_floor_factor = 8.;
   std::vector<V3> t1(n), t2(n), trial(n);
   std::vector<double> edge_sum(n), face_weight(n);
   std::vector<int> edge_count(n);
+  std::vector<double> row_abs(2 * n);
   Eigen::VectorXd gradient(2 * n);
   std::vector<Eigen::Triplet<double>> entries;
   Sparse_ldlt factorization;
@@ -280,6 +386,7 @@ inline Least_distortion_report minimize_conformal_distortion(const std::vector<s
     std::fill(edge_sum.begin(), edge_sum.end(), 0.);
     std::fill(face_weight.begin(), face_weight.end(), 0.);
     std::fill(edge_count.begin(), edge_count.end(), 0);
+    std::fill(row_abs.begin(), row_abs.end(), 0.);
     report.energy = 0.;
     for(std::size_t f = 0; f < m; ++f)
     {
@@ -308,6 +415,9 @@ inline Least_distortion_report minimize_conformal_distortion(const std::vector<s
         h_tangent(2 * k, 2 * k) -= radial;
         h_tangent(2 * k + 1, 2 * k + 1) -= radial;
       }
+      for(int a = 0; a < 3; ++a)
+        for(int r = 0; r < 2; ++r)
+          row_abs[2 * triangles[f][a] + r] += h_tangent.row(2 * a + r).cwiseAbs().sum();
       if(!whole_hessian)
       {
         Eigen::SelfAdjointEigenSolver<Eigen::Matrix<double, 6, 6>> eigen(h_tangent);
@@ -334,7 +444,11 @@ inline Least_distortion_report minimize_conformal_distortion(const std::vector<s
     {
       const double h = edge_sum[i] / std::max(1, edge_count[i]);
       const double sigma = gradient.segment<2>(2 * i).norm() * h / face_weight[i];
-      if(sigma <= floor_scale / h)
+      // The rounding floor: what rounding the positions to double (|dx| ~ eps) changes in sigma, through the rows of
+      // the Hessian; at least 64 eps / h (about that for faces of good shape).
+      const double hessian_floor = rounding_floor_factor * std::numeric_limits<double>::epsilon()
+                                   * std::max(row_abs[2 * i], row_abs[2 * i + 1]) * h / face_weight[i];
+      if(sigma <= std::max(floor_scale / h, hessian_floor))
         continue; // within its rounding floor: counts as stationary (and as 0 in the maximum)
       report.max_stationarity = std::max(report.max_stationarity, sigma);
       if(sigma > options.tolerance)
