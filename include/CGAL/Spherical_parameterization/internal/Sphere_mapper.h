@@ -147,7 +147,8 @@ public:
     // With least_distortion and a time budget, the ways to the balanced map get a share of it, the minimization the
     // rest (Solver_tuning::least_distortion_balance_share).
     const double budget = m_options.iterations.max_seconds;
-    if(m_options.least_distortion && !m_options.coarse_level && budget >= 0. && !has_tutte_weights(m_system))
+    if(m_options.least_distortion && !m_options.coarse_level && budget >= 0. && !has_tutte_weights(m_system)
+       && m_options.iterations.convergence_test == Convergence_test::IMBALANCE) // least_distortion() runs only then
       m_options.iterations.max_seconds = budget * m_options.iterations.tuning.least_distortion_balance_share;
     m_iteration_options = m_options.iterations;
     // The cautious Newton gives way to the minimization only for weights other than Tutte's, and not where the held
@@ -171,7 +172,10 @@ public:
       m_result.levels.clear();
       m_system.regularized_tips.clear(); // a failed multilevel start's tips belong to its map, not to this one
       if(!two_disk_start(x))
+      {
+        m_options.iterations.max_seconds = budget;
         return m_result;
+      }
       iterate(x);
       if(multilevel_fallback_applies(x))
         multilevel_fallback(x);
@@ -710,7 +714,7 @@ private:
       for(const Least_distortion_level& level : levels.levels)
         std::cerr << "least distortion: level of " << level.vertices << " vertices, " << level.newton_steps
                   << " Newton steps" << (level.stationary ? " (stationary)" : "") << ", " << level.seconds << " s\n";
-    if(!multilevel && !stopped && !m_cancelled && !has_tutte_weights(m_system))
+    if(!multilevel && !stopped && !m_cancelled && !has_tutte_weights(m_system) && !past_time_budget(options, clock))
       compute_tutte_map(other);
     if(!other.empty() && !m_cancelled)
     {
@@ -722,7 +726,7 @@ private:
         y.swap(other);
     }
     Least_distortion_report report; // the time budget counts from `clock`'s start, Tutte's map included
-    if(!m_cancelled)
+    if(!m_cancelled && !past_time_budget(options, clock))
       report = minimize_conformal_distortion(m_system.triangles, m_mesh.points, y, options, clock);
     m_cancelled = m_cancelled || report.cancelled;
     if(m_options.verbose)

@@ -236,8 +236,8 @@ inline Coarsening coarsen_mesh(const Mesh_arrays& mesh, std::size_t target_verti
   return coarsen_mesh(mesh.points, mesh.triangles, target_vertices);
 }
 
-// The point of the sphere where the fan from it over `ring` (counter-clockwise) is positive with the largest margin:
-// the centre of the largest circle inside the ring's kernel, in the gnomonic projection about `centre` (which maps
+// A point of the sphere where the fan from it over `ring` (counter-clockwise) is positive, far from folding: the centre
+// of the largest circle inside the ring's kernel, in the gnomonic projection about `centre` (which maps
 // great circles to straight lines, so that the kernel is an intersection of half-planes). The largest circle touches
 // three of the ring's edge lines: each triple is solved and the best one that keeps every constraint is taken (rings
 // have a few edges). False if the kernel is empty, or a ring vertex is not in the open hemisphere about `centre`.

@@ -204,9 +204,9 @@ inline double conformal_distortion(const std::vector<std::array<int, 3>>& triang
 }
 
 // Nonlinear Gauss-Seidel on F, the smoother of the multilevel start (multilevel_least_distortion.h): `sweeps` passes
-// over the vertices, each moved by a Newton step of its own faces' energy in its tangent plane (its 2x2 Hessian raised
-// to a condition number of at most 1000, at most half its shortest edge, halved until that energy falls and its faces
-// stay positive). Vertices carried back from a coarser level sit where their ring's kernel is widest, not where their
+// over the vertices, each moved by a Newton step of its own faces' energy in its tangent plane (its 2x2 Hessian shifted
+// so that its lowest eigenvalue is at least 1e-3 times its highest, at most half its shortest edge, halved until that
+// energy falls and its faces stay positive). Vertices carried back from a coarser level sit where their ring's kernel is widest, not where their
 // faces keep their shape: a few sweeps remove that local error for the cost of about one global Newton step.
 inline void smooth_conformal_distortion(const std::vector<std::array<int, 3>>& triangles,
                                         const std::vector<Vector3>& points, std::vector<Vector3>& x, int sweeps)

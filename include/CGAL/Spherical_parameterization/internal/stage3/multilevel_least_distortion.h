@@ -23,6 +23,7 @@
 #include <CGAL/Real_timer.h>
 
 #include <array>
+#include <cmath>
 #include <cstddef>
 #include <vector>
 
@@ -80,7 +81,10 @@ bool multilevel_least_distortion_start(const std::vector<Vector3>& points,
     return false;
   std::vector<Vector3> y;
   if(!coarsest_map(hierarchy.back().coarse, y) || y.size() != hierarchy.back().coarse.points.size())
+  {
+    multilevel.out_of_time = past_time_budget(options, clock); // its map ended unconverged for lack of time
     return false;
+  }
   Iteration_options level_options = options;
   level_options.max_newton_sweeps = std::min(options.max_newton_sweeps, tuning.least_distortion_coarse_max_steps);
   level_options.tolerance = std::max(options.tolerance, tuning.least_distortion_coarse_tolerance);
@@ -104,11 +108,18 @@ bool multilevel_least_distortion_start(const std::vector<Vector3>& points,
     figures.seconds = clock.time() - start_time;
     multilevel.levels.push_back(figures);
     std::vector<Vector3> finer;
-    prolong(hierarchy[level - 1], y, finer, Insertion::KERNEL_CENTRE);
+    // A vertex left folded (no positive place in its ring, which rounding alone should cause) makes F infinite: no
+    // start (the caller falls back to Tutte's map). Smoothing cannot unfold it.
+    if(prolong(hierarchy[level - 1], y, finer, Insertion::KERNEL_CENTRE) != 0)
+      return false;
     smooth_conformal_distortion(level_triangles(level - 1), level_points(level - 1), finer,
                                 tuning.least_distortion_smoothing_sweeps);
     y.swap(finer);
   }
+  // The same test as the minimization's (every face positive in its orientation), which the exact predicate of
+  // prolong() need not imply on faces at the limits of double precision.
+  if(!std::isfinite(conformal_distortion(triangles, points, y)))
+    return false;
   x.swap(y);
   return true;
 }
