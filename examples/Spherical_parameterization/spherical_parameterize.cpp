@@ -167,9 +167,9 @@ void print_usage(std::ostream& out)
          "  held_weight_vertices, held_weight_parameter and requested_weights_max_imbalance (weights other than\n"
          "  Tutte's whose path from Tutte's ends: vertices whose weights were held, see the manual; 0, 1, null\n"
          "  when none),\n"
-         "  least_distortion_map, distortion_energy, max_distortion_stationarity, least_distortion_steps\n"
-         "  (--least-distortion: whether the map returned is the bijective map of least conformal distortion;\n"
-         "  the other three null when it is not),\n"
+         "  least_distortion_map, distortion_energy, max_distortion_stationarity, least_distortion_steps,\n"
+         "  distortion_vertices_at_rounding_floor (--least-distortion: whether the map returned is the bijective\n"
+         "  map of least conformal distortion; the other four null when it is not),\n"
          "  max_stationarity and unstationary_vertices (non-symmetric weights, else null), residual (Res),\n"
          "  max_tangential_residual, flipped_faces, total_signed_area, bijective,\n"
          "  distortion.{mean_angle_error_degrees,max_angle_error_degrees,log_area_ratio_stddev} (each corner's\n"
@@ -551,6 +551,8 @@ void print_json(std::ostream& out, const SP::Result& r, const Run_figures& run)
       {"distortion_energy", json_number(r.distortion_energy, computed && r.least_distortion_map)},
       {"max_distortion_stationarity", json_number(r.max_distortion_stationarity, computed && r.least_distortion_map)},
       {"least_distortion_steps", json_count(r.least_distortion_steps, computed && r.least_distortion_map)},
+      {"distortion_vertices_at_rounding_floor",
+       json_count(r.distortion_vertices_at_rounding_floor, computed && r.least_distortion_map)},
       {"held_weight_parameter", json_number(r.held_weight_parameter, computed)},
       {"requested_weights_max_imbalance",
        json_number(r.requested_weights_max_imbalance, computed && r.requested_weights_max_imbalance >= 0.)},
@@ -625,7 +627,8 @@ void print_text(std::ostream& out, const SP::Result& r, const Run_figures& run)
     out << "least distortion: the bijective map of least conformal distortion (--least-distortion), not a balanced "
            "map of the weights given: distortion "
         << r.distortion_energy << " (about 1: every small triangle keeps its shape), max stationarity " << r.max_distortion_stationarity
-        << " after " << r.least_distortion_steps << " Newton steps\n";
+        << " after " << r.least_distortion_steps << " Newton steps ("
+        << r.distortion_vertices_at_rounding_floor << " vertices held to their rounding floor)\n";
   if(r.held_weight_vertices > 0)
     out << "held weights:    " << r.held_weight_vertices << " of the " << r.number_of_vertices
         << " vertices keep the weights blended with Tutte's at s >= " << r.held_weight_parameter

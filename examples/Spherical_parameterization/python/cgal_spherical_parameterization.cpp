@@ -134,6 +134,7 @@ py::dict result_dict(const SP::Result& r, const std::string& weights, const std:
   d["distortion_energy"] = number(r.distortion_energy);
   d["max_distortion_stationarity"] = number(r.max_distortion_stationarity);
   d["least_distortion_steps"] = r.least_distortion_steps;
+  d["distortion_vertices_at_rounding_floor"] = r.distortion_vertices_at_rounding_floor;
   d["multilevel_fallback"] = r.multilevel_fallback;
   d["residual"] = number(r.residual);
   d["max_tangential_residual"] = number(r.max_tangential_residual);

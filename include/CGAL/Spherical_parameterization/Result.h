@@ -111,6 +111,10 @@ struct Result
   double max_distortion_stationarity = -1.;
   /// When `least_distortion_map`: the Newton steps of that minimization; 0 otherwise.
   std::size_t least_distortion_steps = 0;
+  /// When `least_distortion_map`: the vertices whose stationarity is above the tolerance but within their rounding
+  /// floor (the manual's "Converged" section: positions rounded to double cannot promise less), which count as
+  /// stationary; 0 otherwise.
+  std::size_t distortion_vertices_at_rounding_floor = 0;
   /// The map comes from the multilevel start tried after the two-disk path ended unconverged on a mesh below the
   /// multilevel size (the manual's Method section); `levels` then describes it.
   bool multilevel_fallback = false;

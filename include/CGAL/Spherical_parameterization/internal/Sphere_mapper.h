@@ -745,6 +745,7 @@ private:
     m_result.distortion_energy = report.energy;
     m_result.max_distortion_stationarity = report.max_stationarity;
     m_result.least_distortion_steps = report.newton_steps;
+    m_result.distortion_vertices_at_rounding_floor = report.vertices_at_rounding_floor;
     m_least_distortion_stationary = report.stationary;
   }
 

@@ -52,6 +52,7 @@ struct Least_distortion_report
   double energy = -1.; // F (3D areas summing to 1): about 1 when every small triangle keeps its shape
   double max_stationarity = -1.; // max_k sigma_k, 0 for the vertices within their rounding floor
   std::size_t unstationary_vertices = 0;
+  std::size_t vertices_at_rounding_floor = 0; // sigma_k above the tolerance but within its rounding floor
 };
 
 namespace least_distortion_detail {
@@ -440,6 +441,7 @@ inline Least_distortion_report minimize_conformal_distortion(const std::vector<s
     }
     report.max_stationarity = 0.;
     report.unstationary_vertices = 0;
+    report.vertices_at_rounding_floor = 0;
     for(int i = 0; i < n; ++i)
     {
       const double h = edge_sum[i] / std::max(1, edge_count[i]);
@@ -449,7 +451,11 @@ inline Least_distortion_report minimize_conformal_distortion(const std::vector<s
       const double hessian_floor = rounding_floor_factor * std::numeric_limits<double>::epsilon()
                                    * std::max(row_abs[2 * i], row_abs[2 * i + 1]) * h / face_weight[i];
       if(sigma <= std::max(floor_scale / h, hessian_floor))
+      {
+        if(sigma > options.tolerance)
+          ++report.vertices_at_rounding_floor;
         continue; // within its rounding floor: counts as stationary (and as 0 in the maximum)
+      }
       report.max_stationarity = std::max(report.max_stationarity, sigma);
       if(sigma > options.tolerance)
         ++report.unstationary_vertices;
