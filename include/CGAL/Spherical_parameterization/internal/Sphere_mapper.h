@@ -714,8 +714,9 @@ private:
       for(const Least_distortion_level& level : levels.levels)
         std::cerr << "least distortion: level of " << level.vertices << " vertices, " << level.newton_steps
                   << " Newton steps" << (level.stationary ? " (stationary)" : "") << ", " << level.seconds << " s\n";
-    if(!multilevel && !stopped && !m_cancelled && !has_tutte_weights(m_system) && !past_time_budget(options, clock))
-      compute_tutte_map(other);
+    if(!multilevel && !stopped && !m_cancelled && !has_tutte_weights(m_system) && !past_time_budget(options, clock)
+       && !compute_tutte_map(other))
+      other.clear(); // only a certified Tutte's map is a start, as before the multilevel start
     if(!other.empty() && !m_cancelled)
     {
       const double from_other = conformal_distortion(m_system.triangles, m_mesh.points, other);
