@@ -35,6 +35,10 @@ X, info = sp.map_to_sphere(V, F)
 check(info["status"] == "OK" and info["success"] and info["bijective"] and info["flipped_faces"] == 0, "map_to_sphere: %s" % info["message"])
 check(X.shape == V.shape and X.dtype == np.float64 and np.abs(np.linalg.norm(X, axis=1) - 1).max() < 1e-14, "X on the unit sphere")
 check(info["max_imbalance"] <= 1e-6 and set(info["stages"]) == {"initial_guess", "gauss_seidel", "newton"}, "figures")
+# What does not apply is None, as the JSON's null: stationarity (symmetric weights), the least-distortion figures.
+check(all(info[k] is None for k in ("max_stationarity", "unstationary_vertices", "distortion_energy", "max_distortion_stationarity",
+                                    "least_distortion_steps", "distortion_vertices_at_rounding_floor"))
+      and info["least_distortion_map"] is False, "figures that do not apply: %s" % {k: info[k] for k in info if "distortion" in k or "stationar" in k})
 certificate = sp.certify(X, F)
 check(certificate["bijective"] and certificate["flipped_faces"] == 0 and abs(certificate["total_signed_area"] - 4 * np.pi) < 1e-9,
       "certify: %s" % certificate)

@@ -123,7 +123,9 @@ py::dict result_dict(const SP::Result& r, const std::string& weights, const std:
   d["imbalance_percentile_99"] = number(r.imbalance_percentile_99);
   d["unbalanced_vertices"] = r.unbalanced_vertices;
   d["max_stationarity"] = number(r.max_stationarity);
-  d["unstationary_vertices"] = r.unstationary_vertices;
+  // Counts the command line gives as null where they do not apply: None here too.
+  auto count_if = [](std::size_t n, bool applies) { return applies ? py::object(py::int_(n)) : py::object(py::none()); };
+  d["unstationary_vertices"] = count_if(r.unstationary_vertices, r.max_stationarity >= 0.);
   d["vertices_at_rounding_floor"] = r.vertices_at_rounding_floor;
   d["vertices_below_precision"] = r.vertices_below_precision;
   d["regularized_tip_vertices"] = r.regularized_tip_vertices;
@@ -133,8 +135,8 @@ py::dict result_dict(const SP::Result& r, const std::string& weights, const std:
   d["least_distortion_map"] = r.least_distortion_map;
   d["distortion_energy"] = number(r.distortion_energy);
   d["max_distortion_stationarity"] = number(r.max_distortion_stationarity);
-  d["least_distortion_steps"] = r.least_distortion_steps;
-  d["distortion_vertices_at_rounding_floor"] = r.distortion_vertices_at_rounding_floor;
+  d["least_distortion_steps"] = count_if(r.least_distortion_steps, r.least_distortion_map);
+  d["distortion_vertices_at_rounding_floor"] = count_if(r.distortion_vertices_at_rounding_floor, r.least_distortion_map);
   d["multilevel_fallback"] = r.multilevel_fallback;
   d["residual"] = number(r.residual);
   d["max_tangential_residual"] = number(r.max_tangential_residual);

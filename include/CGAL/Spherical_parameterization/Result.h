@@ -98,7 +98,8 @@ struct Result
   double requested_weights_max_imbalance = -1.;
   /// With the named parameter `least_distortion`: the map returned is the bijective map of least conformal distortion
   /// (not a balanced map of the weights given, whose figures `max_imbalance` and the others still report), because
-  /// those weights' map ended unbalanced or not bijective (their last resort, the cautious Newton, is then left out). Then the convergence test is the stationarity of that
+  /// those weights' map ended unbalanced or not bijective (their last resort, the cautious Newton, is then left out,
+  /// unless `hold_weights` was given too). Then the convergence test is the stationarity of that
   /// minimum: `max_distortion_stationarity` at most the tolerance (or its rounding floor) at every vertex.
   bool least_distortion_map = false;
   /// The conformal distortion of the map returned when `least_distortion_map`: the mean, weighted by 3D area, of

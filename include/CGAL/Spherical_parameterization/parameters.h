@@ -151,7 +151,7 @@ CGAL_SPHERICAL_PARAMETERIZATION_NAMED_PARAMETER(multilevel)
 /// (`Result::held_weight_vertices`, `Result::held_weight_parameter`); default `false`: such maps end
 /// `Error_code::NOT_CONVERGED`. An experimental option: see the manual's Method section for what it costs in shape.
 CGAL_SPHERICAL_PARAMETERIZATION_NAMED_PARAMETER(hold_weights)
-/// `true`: where the map of the weights given ends neither balanced nor bijective (cotangent and mean-value weights
+/// `true`: where the map of the weights given ends unbalanced or not bijective (cotangent and mean-value weights
 /// whose balanced map folds or does not exist), return instead the bijective map of least conformal distortion: a
 /// minimum, over bijective maps, of the conformal distortion of the flat triangles through the sphere points against
 /// the 3D triangles, started from the map reached or, of less distortion, a map minimized on coarser levels first

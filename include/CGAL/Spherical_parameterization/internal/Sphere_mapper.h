@@ -151,10 +151,12 @@ public:
        && m_options.iterations.convergence_test == Convergence_test::IMBALANCE) // least_distortion() runs only then
       m_options.iterations.max_seconds = budget * m_options.iterations.tuning.least_distortion_balance_share;
     m_iteration_options = m_options.iterations;
-    // The cautious Newton gives way to the minimization only for weights other than Tutte's, and not where the held
-    // continuation (which comes after it) was asked for.
-    m_iteration_options.least_distortion_follows = m_options.least_distortion && !m_options.coarse_level
-                                                   && !m_options.hold_weights && !has_tutte_weights(m_system);
+    // The cautious Newton gives way to the minimization only for weights other than Tutte's, not where the held
+    // continuation (which comes after it) was asked for, and only where the minimization runs (the imbalance test:
+    // with the paper's, least_distortion() returns at once, and the cautious Newton had been left out for nothing).
+    m_iteration_options.least_distortion_follows =
+        m_options.least_distortion && !m_options.coarse_level && !m_options.hold_weights
+        && !has_tutte_weights(m_system) && m_options.iterations.convergence_test == Convergence_test::IMBALANCE;
     if(multilevel_applies())
       m_multilevel_tried = true;
     if(m_multilevel_tried && multilevel_start(x))

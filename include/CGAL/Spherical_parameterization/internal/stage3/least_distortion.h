@@ -10,7 +10,7 @@
 //   F(x) = sum_f A_f * (sum_k cot(theta_k) |e'_k|^2) / (4 S_f),
 // the conformal distortion (MIPS) of the flat triangle through the three sphere points against the 3D triangle:
 // theta_k the 3D angles, A_f the 3D areas over their sum, e'_k the edges of the flat triangle, S_f its area signed by
-// the orientation the certificate tests (det(a, b, c) / (2 |c|), c the centroid: |N_f| / 2 would not vanish where three points of one great circle make a degenerate spherical triangle). The term of a face is A_f times
+// the orientation the certificate tests (det(a, b, c) / (2 |c|), c the centroid, |c| floored: centroid_floor; |N_f| / 2 would not vanish where three points of one great circle make a degenerate spherical triangle). The term of a face is A_f times
 // (s1^2 + s2^2) / (2 s1 s2) (s1, s2 the singular values of the affine map between the two triangles) times |N_f| /
 // (2 S_f), which is 1 for faces small against the sphere and a little above 1 for large ones (the regular
 // tetrahedron: F = 1.04): at least A_f, about A_f for similar small triangles, and infinite as the face degenerates
