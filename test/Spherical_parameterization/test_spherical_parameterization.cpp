@@ -2330,6 +2330,11 @@ TEST(ProgressCallback, FollowsTheStagesAndCancels)
     stages.push_back(progress.stage);
     seconds.push_back(progress.seconds);
     EXPECT_TRUE(std::isfinite(progress.residual));
+    // Measured at the end of stage 1 only: -1 in the per-iteration reports (it had repeated stage 1's value).
+    if(std::string(progress.stage) == "initial guess")
+      EXPECT_GE(progress.max_imbalance, 0.);
+    else
+      EXPECT_EQ(progress.max_imbalance, -1.) << progress.stage << " " << progress.iteration;
     return true;
   };
   std::map<Mesh::Vertex_index, Point> positions;

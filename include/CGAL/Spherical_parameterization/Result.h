@@ -26,13 +26,17 @@ struct Stage_statistics
 {
   /// Stage 1: the pairs of disks embedded (1, or more when the disk solver failed and Eigen's sparse LU was tried,
   /// or when the weights folded the disks and Tutte's were tried; 0 with the multilevel start, whose levels are in
-  /// `Result::levels`). Stage 2: the sweeps over the vertices. Stage 3: the iterations of the `nonlinear_solver`
+  /// `Result::levels`, unless it came as the fallback after the two-disk path: then that path's). Stage 2: the sweeps
+  /// over the vertices. Stage 3: the iterations of the `nonlinear_solver`
   /// (Newton steps, or the local Newton's sweeps over the vertices).
   std::size_t iterations = 0;
   double seconds = 0.;               ///< Wall-clock time of the stage.
-  double residual = -1.;             ///< The paper's `Res` at the end of the stage (-1 when not computed).
-  std::size_t linear_iterations = 0; ///< Stage 3: MINRES iterations of Newton's iterative linear solves (0 when
-                                     ///< every system was factorized).
+  /// The paper's `Res` at the end of the stage (-1 when not computed); with the multilevel start, stage 1's is that
+  /// of the map carried back after the smoothing sweeps (stage 2's).
+  double residual = -1.;
+  /// Stage 3: MINRES iterations of Newton's iterative linear solves (0 when every system was factorized; the GMRES
+  /// iterations of the least-squares steps of non-symmetric weights are not counted).
+  std::size_t linear_iterations = 0;
 };
 
 /// \ingroup PkgSphericalParameterizationRef
@@ -65,17 +69,18 @@ struct Result
   /// rounding floor is larger, over the vertices tested (see `vertices_below_precision`).
   double max_imbalance = -1.;
   double imbalance_percentile_99 = -1.; ///< The 99th percentile of the imbalances \f$ e_i \f$.
-  /// Vertices whose neighbourhood is so small (spherical edges below about 2e-9) that positions rounded to double
-  /// carry an imbalance above the tolerance: \f$ 8 \cdot 2 \sqrt{3} \, 2^{-53} \sum_j |w_{ij}| / \sum_j |w_{ij}| s(|x_j - x_i|) \f$,
-  /// their rounding floor. The imbalance test holds them to that floor instead of the tolerance; a floor above
-  /// 1/2 (a test that could not fail) never passes, unless the vertex is below double precision
-  /// (`vertices_below_precision`).
+  /// Vertices whose neighbourhood is so small (a weighted mean chord below about 3e-9 with the default tolerance)
+  /// that positions rounded to double carry an imbalance above the tolerance:
+  /// \f$ 8 \cdot 2 \sqrt{3} \, 2^{-53} \sum_j |w_{ij}| / \sum_j |w_{ij}| \, |x_j - x_i| \f$ (chords), their rounding
+  /// floor. The imbalance test holds them to that floor instead of the tolerance. The floor depends on that mean
+  /// chord only; where it would exceed 1/2 the vertex is below double precision (`vertices_below_precision`).
   std::size_t vertices_at_rounding_floor = 0;
   /// Vertices below double precision: all their neighbours within about 28 ulps of them (a weighted mean chord below
   /// \f$ 8 \cdot 2 \sqrt{3} \, 2^{-53} / (1/2) \approx 6.2 \cdot 10^{-15} \f$), where the balanced map shrinks the tips of
   /// long thin arms below 1e-16 and positions coincide as doubles. Their balance cannot be told from rounding: they
   /// are counted here and not tested (nor in `max_imbalance`); every vertex around them is. The certificate covers
-  /// them like every other vertex.
+  /// them like every other vertex. For non-symmetric weights the test is the stationarity (`max_stationarity`),
+  /// which has a floor of its own and still tests them.
   std::size_t vertices_below_precision = 0;
   /// Vertices of arm tips whose balanced positions lie below double precision, so that the balanced map rounded to
   /// double has non-positive triangles there: they were solved with weights that fall by a constant factor per ring
@@ -119,8 +124,8 @@ struct Result
   /// The map comes from the multilevel start tried after the two-disk path ended unconverged on a mesh below the
   /// multilevel size (the manual's Method section); `levels` then describes it.
   bool multilevel_fallback = false;
-  /// Vertices whose imbalance exceeds the tolerance (or their rounding floor, where it is larger), or whose floor
-  /// exceeds 1/2 (vertices below double precision excepted); 0 when balanced.
+  /// Vertices whose imbalance exceeds the tolerance (or their rounding floor, where it is larger), vertices below
+  /// double precision excepted; 0 when balanced.
   std::size_t unbalanced_vertices = 0;
   /// Non-symmetric weights (mean value) only, whose balance equations generally have no exact solution: the largest
   /// stationarity \f$ \sigma_k \f$ of their least-squares problem \f$ \min \frac{1}{2} \sum_i e_i^2 \f$ (the imbalances
@@ -159,7 +164,8 @@ struct Result
   /// and those the global solver makes where none of its steps is accepted), also a vertex whose Newton step does
   /// not lower the residuals of its one-ring, so near a solution most vertices count in every sweep. Moves that the
   /// halving shortened, and the global solver's own steps (whose line search shortens all moves at once), do not
-  /// count; 0 with the multilevel start and when Newton's full steps from the initial guess converge.
+  /// count; 0 with the multilevel start (unless it came as the fallback after the two-disk path: then that path's)
+  /// and when Newton's full steps from the initial guess converge.
   std::size_t rejected_moves = 0;
   /// How far the continuation from Tutte's weights to the given ones got, in [0, 1] (1: all the way); -1 when it
   /// was not needed. Below 1, the balanced maps of the blended weights could not be followed further: with

@@ -41,10 +41,10 @@ enum class Convergence_test
   /// \f$ e_i = |t_i| / \sum_j |w_{ij}| \, s(|x_j - x_i|) \f$, with \f$ t_i \f$ the tangential part of
   /// \f$ \sum_j w_{ij} (x_j - x_i) \f$ (weights normalized to sum to one) and \f$ s(c) = c \sqrt{1 - c^2/4} \f$ the
   /// length of an edge's tangential part, is at most the tolerance at every vertex, or at most the vertex's rounding
-  /// floor where that is larger and at most 1/2 (see `Result::vertices_at_rounding_floor`); vertices below double
-  /// precision are counted, not tested (`Result::vertices_below_precision`).
+  /// floor where that is larger (see `Result::vertices_at_rounding_floor`); vertices below double precision (where
+  /// that floor would exceed 1/2) are counted, not tested (`Result::vertices_below_precision`).
   /// For non-symmetric weights (mean value), whose equations generally have no exact solution, the stationarity of
-  /// their least-squares problem instead (`Result::max_stationarity`, see the manual).
+  /// their least-squares problem instead (`Result::max_stationarity`, see the manual), at every vertex.
   IMBALANCE,
   /// The paper's test: `Res < tolerance`. `Res` carries a factor 1/sqrt(n) against the root mean square of the
   /// per-vertex residuals, so on large meshes it passes while vertices are still far from balanced; kept to

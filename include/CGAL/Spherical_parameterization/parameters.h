@@ -119,17 +119,21 @@ CGAL_SPHERICAL_PARAMETERIZATION_NAMED_PARAMETER(weighting)
 /// A readable property map from halfedges to `double`: the weight of `source(h)` in the equation of `target(h)`.
 /// Implies `Weighting::USER_MAP` when `weighting` is not given.
 CGAL_SPHERICAL_PARAMETERIZATION_NAMED_PARAMETER(halfedge_weight_map)
-/// The tolerance of the `convergence_test` (default `1e-6`): the largest imbalance `e_i` allowed, or the paper's `Res`.
+/// The tolerance of the `convergence_test` (default `1e-6`): the largest imbalance `e_i` allowed (for non-symmetric
+/// weights, the largest stationarity of their least-squares problem), or the paper's `Res`.
 CGAL_SPHERICAL_PARAMETERIZATION_NAMED_PARAMETER(tolerance)
 /// When the iterations stop (`Convergence_test`), default `Convergence_test::IMBALANCE`.
 CGAL_SPHERICAL_PARAMETERIZATION_NAMED_PARAMETER(convergence_test)
 /// Iteration cap of stage 2 (projected Gauss-Seidel sweeps, default 1000).
 CGAL_SPHERICAL_PARAMETERIZATION_NAMED_PARAMETER(max_gauss_seidel_sweeps)
-/// Iteration cap of stage 3 (sweeps of the nonlinear solver, default 200000).
+/// Iteration cap of stage 3 (sweeps of the nonlinear solver, default 200000), for each of its attempts (each level of
+/// the multilevel start, the two-disk path, a fallback).
 CGAL_SPHERICAL_PARAMETERIZATION_NAMED_PARAMETER(max_newton_sweeps)
 /// Wall-clock budget of the whole call in seconds (default: unlimited); stage 1 always runs to its end.
 CGAL_SPHERICAL_PARAMETERIZATION_NAMED_PARAMETER(max_seconds)
-/// Backtrack any vertex move that would make one of its spherical triangles non-positive (default `true`).
+/// Backtrack any vertex move that would make one of its spherical triangles non-positive (default `true`): stage 2's
+/// moves and the bijectivity-preserving Newton steps; Newton's full steps, which the global solver tries first, may
+/// fold triangles on the way whatever the setting (the certificate decides).
 CGAL_SPHERICAL_PARAMETERIZATION_NAMED_PARAMETER(preserve_bijectivity)
 /// Solver of stage 3 (`Nonlinear_solver`), default `Nonlinear_solver::GLOBAL_NEWTON`.
 CGAL_SPHERICAL_PARAMETERIZATION_NAMED_PARAMETER(nonlinear_solver)

@@ -57,8 +57,9 @@ using Sparse_LU_disk_solver_traits = internal::Sparse_LU_solver_traits;
 /// certified: every spherical triangle is positively oriented and a generic point is covered once, both under
 /// exact predicates (`Result::bijective`); only then is the status `Error_code::OK`.
 ///
-/// The mesh is never modified. On an input error nothing is written to `vsm`; otherwise `vsm` receives the
-/// final (best) iterate, also when the status is `NOT_CONVERGED` or `NOT_BIJECTIVE`.
+/// The mesh is never modified. On an input error, and where no initial guess could be made (`PARTITION_FAILED`,
+/// `DISK_EMBEDDING_FAILED`), nothing is written to `vsm`; otherwise `vsm` receives the final (best) iterate, also
+/// when the status is `NOT_CONVERGED` or `NOT_BIJECTIVE`.
 ///
 /// \tparam ConcurrencyTag `CGAL::Sequential_tag`, `CGAL::Parallel_tag` (needs TBB: the two disks of stage 1 are
 ///         embedded at the same time; each level of the multilevel start builds its Newton steps' preconditioner
@@ -147,7 +148,8 @@ using Sparse_LU_disk_solver_traits = internal::Sparse_LU_solver_traits;
 ///   \cgalParamNEnd
 ///   \cgalParamNBegin{tolerance}
 ///     \cgalParamDescription{stop when every vertex's imbalance `e_i` is at most this value (or its rounding floor,
-///                           where larger); with `Convergence_test::PAPER_RESIDUAL`, when `Res` is below it}
+///                           where larger; for non-symmetric weights, the stationarity of their least-squares
+///                           problem); with `Convergence_test::PAPER_RESIDUAL`, when `Res` is below it}
 ///     \cgalParamType{`double`}
 ///     \cgalParamDefault{`1e-6`}
 ///   \cgalParamNEnd
@@ -301,6 +303,7 @@ Result spherical_parameterize(const TriangleMesh& tm, VertexSphereMap vsm,
       last->stage = stage;
       last->iteration = sweep;
       last->residual = residual;
+      last->max_imbalance = -1.; // measured at the end of stage 1 only (Progress::max_imbalance)
       last->non_positive_faces = invalid;
       last->seconds = clock.time();
       return report(*last);

@@ -378,19 +378,21 @@ inline Residuals compute_residuals(const Sphere_system& system, const std::vecto
 // edges, which stay below 90 degrees): below it no solver can balance the vertex in double precision, so a vertex
 // passes when e_i <= max(tolerance, rounding_floor_i). Over l_i itself, a neighbour near the antipode (an edge of
 // nearly 180 degrees, which no balanced map of a mesh has) made the floor of a collapse 0.27 to 0.5: CGAL's
-// tetrahedra with cotangent weights passed, three vertices within 1e-14 of each other and the fourth opposite. It exceeds 1e-6 only for neighbourhoods below
-// about 2e-9 (the thin limbs of organic models); such vertices are counted and reported. A vertex whose floor
-// exceeds max_rounding_floor never passes: every e_i is at most 1 (up to rounding), so that test could not fail,
-// and it passed maps collapsed within rounding onto two points (found by the fuzzer: floors of 1 and more). The
+// tetrahedra with cotangent weights passed, three vertices within 1e-14 of each other and the fourth opposite. The
+// floor depends only on the |w|-weighted mean chord (sum_j |w_ij| cancels, whatever the signs); it exceeds 1e-6 only
+// below a mean chord of about 3e-9 (the thin limbs of organic models); such vertices are counted and reported. A
+// floor above max_rounding_floor would make a test that cannot fail (every e_i is at most 1, up to rounding): it
+// means a mean chord below below_precision_mean_chord, and such a vertex is counted as below precision, not tested
+// (a map collapsed within rounding onto two points, found by the fuzzer, is rejected by the certificate). The
 // thin limbs of CGAL's man.off and of oded_scorpion have floors up to a few 1e-2 and stay testable.
 constexpr double imbalance_rounding_factor = 8.;
 constexpr double max_rounding_floor = 0.5;
-// A vertex whose neighbours are all within this mean chord of it (about 28 ulps of 1: its floor with weights of one
-// sign is then above max_rounding_floor) is below double precision: its balance cannot be told from rounding, so it
-// is counted (Result::vertices_below_precision), not tested. The thin arms of marching-cubes surfaces (length over
-// radius above about 35) have balanced maps whose tips shrink below 1e-16, where positions coincide as doubles; the
-// arms' resolved vertices, including those around every such tip, are still tested. Where the floor exceeds 1/2
-// because weights of mixed signs cancel (sum_j |w_ij| >> 1), the vertex is resolved and never passes, as above.
+// A vertex whose neighbours are all within this mean chord of it (about 28 ulps of 1: exactly where its floor
+// reaches max_rounding_floor) is below double precision: its balance cannot be told from rounding, so it is counted
+// (Result::vertices_below_precision), not tested. The thin arms of marching-cubes surfaces (length over radius above
+// about 35) have balanced maps whose tips shrink below 1e-16, where positions coincide as doubles; the arms' resolved
+// vertices, including those around every such tip, are still tested. A resolved vertex never passes only where its
+// floor is infinite (every neighbour on it or at its antipode).
 constexpr double below_precision_mean_chord =
     imbalance_rounding_factor * 2. * 1.7320508075688772 * 1.1102230246251565e-16 / max_rounding_floor;
 
