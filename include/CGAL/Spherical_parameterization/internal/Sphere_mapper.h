@@ -144,19 +144,19 @@ public:
     m_total.start();
     m_result.number_of_vertices = m_system.number_of_vertices;
     m_result.number_of_faces = m_system.triangles.size();
-    // With least_distortion and a time budget, the ways to the balanced map get a share of it, the minimization the
-    // rest (Solver_tuning::least_distortion_balance_share).
+    // With least_distortion, on the mesh given, for weights other than Tutte's and under the imbalance test (with the
+    // paper's, least_distortion() returns at once), the minimization follows the ways to the weights' balanced map:
+    // with a time budget, those ways get a share of it and the minimization the rest
+    // (Solver_tuning::least_distortion_balance_share); and the cautious Newton, their last resort, gives way to the
+    // minimization, except where the held continuation (which comes after it) was asked for.
+    const bool minimization_follows = m_options.least_distortion && !m_options.coarse_level
+                                      && !has_tutte_weights(m_system)
+                                      && m_options.iterations.convergence_test == Convergence_test::IMBALANCE;
     const double budget = m_options.iterations.max_seconds;
-    if(m_options.least_distortion && !m_options.coarse_level && budget >= 0. && !has_tutte_weights(m_system)
-       && m_options.iterations.convergence_test == Convergence_test::IMBALANCE) // least_distortion() runs only then
+    if(minimization_follows && budget >= 0.)
       m_options.iterations.max_seconds = budget * m_options.iterations.tuning.least_distortion_balance_share;
     m_iteration_options = m_options.iterations;
-    // The cautious Newton gives way to the minimization only for weights other than Tutte's, not where the held
-    // continuation (which comes after it) was asked for, and only where the minimization runs (the imbalance test:
-    // with the paper's, least_distortion() returns at once, and the cautious Newton had been left out for nothing).
-    m_iteration_options.least_distortion_follows =
-        m_options.least_distortion && !m_options.coarse_level && !m_options.hold_weights
-        && !has_tutte_weights(m_system) && m_options.iterations.convergence_test == Convergence_test::IMBALANCE;
+    m_iteration_options.least_distortion_follows = minimization_follows && !m_options.hold_weights;
     if(multilevel_applies())
       m_multilevel_tried = true;
     if(m_multilevel_tried && multilevel_start(x))
