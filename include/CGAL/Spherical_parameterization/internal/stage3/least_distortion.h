@@ -370,6 +370,10 @@ inline Least_distortion_report minimize_conformal_distortion(const std::vector<s
   std::vector<Eigen::Triplet<double>> entries;
   Sparse_ldlt factorization;
   double marquardt = 1e-6;
+  // The shift's floor, and the full steps in a row that it capped (Solver_tuning::least_distortion_marquardt_floor).
+  double marquardt_floor = options.tuning.least_distortion_marquardt_floor;
+  std::size_t capped_steps = 0;
+  double previous_decrease = 0.;
   bool whole_hessian = false;
   std::size_t failures = 0;
   // Each pass measures the current iterate (F, its gradient and stationarity: what the report gives), then stops or
@@ -523,14 +527,16 @@ inline Least_distortion_report minimize_conformal_distortion(const std::vector<s
       longest = std::max(longest, step.segment<2>(2 * i).norm());
     // At most half a radian per vertex and step; then halving until every face stays positive and F falls enough.
     const double first = std::min(1., 0.5 / longest);
-    double t = first, accepted = 0.;
+    double t = first, accepted = 0., decrease = 0.;
     for(int tries = 0; tries < 60 && slope < 0.; ++tries, t *= 0.5)
     {
       for(int i = 0; i < n; ++i)
         trial[i] = (y[i] + t * (step[2 * i] * t1[i] + step[2 * i + 1] * t2[i])).normalized();
-      if(energy_change(trial) <= 1e-4 * t * slope)
+      const double change = energy_change(trial);
+      if(change <= 1e-4 * t * slope)
       {
         accepted = t;
+        decrease = -change;
         break;
       }
     }
@@ -544,10 +550,19 @@ inline Least_distortion_report minimize_conformal_distortion(const std::vector<s
     }
     ++report.newton_steps;
     failures = 0;
+    const bool capped = accepted == first && marquardt <= marquardt_floor && previous_decrease > 0.
+                        && decrease >= options.tuning.least_distortion_capped_ratio * previous_decrease;
+    capped_steps = capped ? capped_steps + 1 : 0;
+    if(capped_steps >= options.tuning.least_distortion_capped_steps)
+    {
+      marquardt_floor = std::max(options.tuning.least_distortion_lowest_marquardt_floor, 0.01 * marquardt_floor);
+      capped_steps = 0;
+    }
+    previous_decrease = decrease;
     y.swap(trial);
     // Judged against the first trial length (a full step, or the half-radian cap).
     if(accepted == first)
-      marquardt = std::max(1e-8, marquardt / 10.);
+      marquardt = std::max(marquardt_floor, marquardt / 10.);
     else if(accepted < 0.1 * first)
       marquardt *= 4.;
     whole_hessian = accepted == first;
