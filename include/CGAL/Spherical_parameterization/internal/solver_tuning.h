@@ -86,10 +86,10 @@ struct Solver_tuning
   // Its Marquardt shift (relative to the unit diagonal) falls after full steps down to a floor, first this one. The
   // floor caps the steps along directions flatter than it: where `least_distortion_capped_steps` full steps in a row
   // at the floor each lower F by at least `least_distortion_capped_ratio` times what the step before did (no sign of
-  // convergence: the floor, not the model, limits them), it is lowered 100 times, down to the lowest (below the 1e-12
+  // convergence: the floor, not the model, limits them), it is divided by 100, down to the lowest (below the 1e-12
   // always added to the diagonal). CGAL's cow: stationarity 4.7e-6 after 2,000 steps with the first floor alone (each
   // step lowered F by the same 2.8e-7), stationary in 300 with the rule; triceratops, dino, man and hand take the same
-  // steps as before (a ratio of 0.9 lowered the floor in triceratops' linear phase, 2.5 times slower there).
+  // steps as before (a ratio of 0.9 lowered the floor in triceratops' linear phase, twice as slow there).
   double least_distortion_marquardt_floor = 1e-8;
   double least_distortion_lowest_marquardt_floor = 1e-14;
   std::size_t least_distortion_capped_steps = 20;
