@@ -315,7 +315,7 @@ inline void smooth_conformal_distortion(const std::vector<std::array<int, 3>>& t
 // of the vertex's rows of the Hessian: eps / h_k times a constant on faces of good shape, far more on slivers squeezed
 // to edges of 1e-11 (CGAL's man: the stationarity of such vertices wandered between 1e-3 and 2e-2 for 80 steps, within
 // a few times their r_k floor). The test is sigma_k <= max(tolerance, 64 eps / h_k, 8 eps r_k h_k / a_k).
-// The steps' Marquardt shift and its floor: Solver_tuning::least_distortion_marquardt_floor and the constants after it.
+// The steps' Marquardt shift and its floor: Solver_tuning::least_distortion_marquardt_floor and the ones after it.
 inline Least_distortion_report minimize_conformal_distortion(const std::vector<std::array<int, 3>>& triangles,
                                                              const std::vector<Vector3>& points, std::vector<Vector3>& x,
                                                              const Iteration_options& options,
@@ -556,8 +556,8 @@ inline Least_distortion_report minimize_conformal_distortion(const std::vector<s
     capped_steps = capped ? capped_steps + 1 : 0;
     if(capped_steps >= options.tuning.least_distortion_capped_steps)
     {
-      marquardt_floor =
-          std::min(marquardt_floor, std::max(options.tuning.least_distortion_lowest_marquardt_floor, 0.01 * marquardt_floor));
+      const double lowered = std::max(options.tuning.least_distortion_lowest_marquardt_floor, 0.01 * marquardt_floor);
+      marquardt_floor = std::min(marquardt_floor, lowered); // never raised by a tuning whose lowest is above it
       capped_steps = 0;
     }
     previous_decrease = decrease;
