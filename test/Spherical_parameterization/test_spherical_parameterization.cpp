@@ -1315,6 +1315,70 @@ TEST(LeastDistortion, FaceEnergyDerivatives)
   EXPECT_TRUE(std::isfinite(regular) != std::isfinite(reversed)); // one orientation is positive, not both
 }
 
+// On a face squeezed to edges of 1e-10 the gradient keeps its digits: its derivatives along the three rotations, 0 for
+// the exact gradient (F does not change under rotations), stay within the rounding of its entries (a few 1e-6 F here,
+// the entries being 1e10 F), where the gradient's absolute forms (sum_j L_ij p_j, p_j x p_k) missed by 6e3 F.
+TEST(LeastDistortion, GradientOfASqueezedFace)
+{
+  namespace D = SP::internal::least_distortion_detail;
+  D::Face_shape shape;
+  shape.weight = 1e-5;
+  shape.cot[0] = 0.3;
+  shape.cot[1] = -0.2;
+  shape.cot[2] = 1.4;
+  const D::V3 centre = D::V3(1., 2., 2.).normalized(), u = centre.unitOrthogonal(), v = centre.cross(u);
+  const double offsets[3][2] = {{0., 0.}, {1., 0.2}, {0.3, 0.9}};
+  D::V3 p[3];
+  for(int k = 0; k < 3; ++k)
+    p[k] = (centre + 1e-10 * (offsets[k][0] * u + offsets[k][1] * v)).normalized();
+  if(D::orientation(p[0], p[1], p[2]) < 0.)
+    std::swap(p[1], p[2]);
+  ASSERT_GT(D::orientation(p[0], p[1], p[2]), 0.);
+  D::Vector9 gradient;
+  const double energy = D::face_energy(shape, p, &gradient);
+  ASSERT_GT(gradient.norm(), 1e9 * energy); // the entries are large: what cancels below
+  D::V3 torque = D::V3::Zero(); // sum_k p_k x g_k: its component l is the derivative along the rotation about e_l
+  for(int k = 0; k < 3; ++k)
+    torque += p[k].cross(D::V3(gradient.segment<3>(3 * k)));
+  EXPECT_LT(torque.norm(), 1e-3 * energy);
+}
+
+// The boosts' balancing: from the regular icosahedron's map (the minimum of F, by symmetry) moved by a boost, it
+// finds its way back (F to within rounding of the minimum) by boosts alone; from the minimum it applies none, nor
+// where the decrease it predicts is below the share asked of the last step's.
+TEST(LeastDistortion, BalancesTheBoosts)
+{
+  namespace D = SP::internal::least_distortion_detail;
+  Mesh mesh;
+  CGAL::make_icosahedron(mesh, Point(0, 0, 0), 1.);
+  SP::internal::Mesh_arrays arrays =
+      SP::internal::read_face_graph(mesh, get(CGAL::vertex_point, mesh), get(CGAL::vertex_index, mesh));
+  std::vector<D::Face_shape> shapes;
+  ASSERT_TRUE(D::face_shapes(arrays.triangles, arrays.points, shapes));
+  std::vector<D::V3> minimum(arrays.points.size()), y;
+  for(std::size_t i = 0; i < minimum.size(); ++i)
+    minimum[i] = D::to_eigen(arrays.points[i]).normalized();
+  auto energy = [&](const std::vector<D::V3>& z) {
+    std::vector<double> terms;
+    D::V3 gradient;
+    EXPECT_TRUE(D::energy_and_boost_gradient(arrays.triangles, shapes, z, terms, gradient));
+    double sum = 0.;
+    for(double t : terms)
+      sum += t;
+    return sum;
+  };
+  const double lowest = energy(minimum);
+  D::apply_boost(minimum, D::V3(0.3, -0.2, 0.4), y);
+  ASSERT_GT(energy(y), lowest + 1e-3);
+  std::vector<D::V3> kept = y;
+  EXPECT_EQ(D::balance_distortion_boosts(arrays.triangles, shapes, kept, 3, 0.01, 1e3), 0u); // 1% of 1e3 > F's range
+  EXPECT_EQ(kept, y);
+  EXPECT_GT(D::balance_distortion_boosts(arrays.triangles, shapes, y, 10, 0., 0.), 0u);
+  EXPECT_NEAR(energy(y), lowest, 1e-12);
+  std::vector<D::V3> at_minimum = minimum;
+  EXPECT_EQ(D::balance_distortion_boosts(arrays.triangles, shapes, at_minimum, 10, 0., 0.), 0u);
+}
+
 // The minimization itself on an icosahedron from a perturbed map: it takes steps, ends stationary, reports the energy
 // of the map it returns, never above the start's; started again from its result, it is stationary without a step.
 TEST(LeastDistortion, MinimizesFromAPerturbedMap)

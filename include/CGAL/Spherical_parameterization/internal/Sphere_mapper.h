@@ -734,7 +734,8 @@ private:
     m_cancelled = m_cancelled || report.cancelled;
     if(m_options.verbose)
       std::cerr << "least distortion: " << (report.started ? "" : "not started, ") << report.newton_steps
-                << " Newton steps, distortion " << report.energy << ", max stationarity " << report.max_stationarity
+                << " Newton steps, " << report.boosts << " boosts, distortion " << report.energy
+                << ", max stationarity " << report.max_stationarity
                 << (report.stationary ? " (stationary)" : "") << ", " << clock.time() << " s\n";
     m_result.newton.seconds += clock.time();
     // Only a minimization that ran (a step taken, or a start found stationary) replaces the map, and only if

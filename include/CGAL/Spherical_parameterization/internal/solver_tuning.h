@@ -80,20 +80,19 @@ struct Solver_tuning
   std::size_t free_newton_patience = 30;
   // The bijectivity-preserving steps give up after this many steps in a row cut below `short_step`.
   std::size_t cautious_patience = 3;
-  // The cap of Newton steps of the least-distortion minimization (least_distortion.h): triceratops' stationary
-  // minimum takes 340, man's is not reached in 300 (the manual's Method section).
+  // The cap of Newton steps of the least-distortion minimization (least_distortion.h), far above what it takes: at
+  // most 83 (CGAL's u) on the meshes of the corpus where it runs (the manual's Method section).
   std::size_t least_distortion_max_steps = 2000;
-  // Its Marquardt shift (relative to the unit diagonal) falls after full steps down to a floor, first this one. The
-  // floor caps the steps along directions flatter than it: where `least_distortion_capped_steps` full steps in a row
-  // at the floor each lower F by at least `least_distortion_capped_ratio` times what the step before did (no sign of
-  // convergence: the floor, not the model, limits them), it is divided by 100, down to the lowest (below the 1e-12
-  // always added to the diagonal). CGAL's cow: stationarity 4.7e-6 after 2,000 steps with the first floor alone (each
-  // step lowered F by the same 2.8e-7), stationary in 300 with the rule; triceratops, dino, man and hand take the same
-  // steps as before (a ratio of 0.9 lowered the floor in triceratops' linear phase, twice as slow there).
-  double least_distortion_marquardt_floor = 1e-8;
-  double least_distortion_lowest_marquardt_floor = 1e-14;
-  std::size_t least_distortion_capped_steps = 20;
-  double least_distortion_capped_ratio = 0.99;
+  // Its Marquardt shift (relative to the unit diagonal) falls after full steps down to this floor. The floor caps the
+  // steps along directions flatter than it; with the boosts balanced apart and the gradient's digits kept, 1e-12
+  // (the shift always added) takes CGAL's camel to its minimum in 45 steps, 490 with a floor of 1e-8; 1e-14 left
+  // triceratops at stationarity 2.4e-6, where no step lowered F above its rounding (the manual's Method section).
+  double least_distortion_marquardt_floor = 1e-12;
+  // Its boosts (balance_distortion_boosts): before the first step and after each one, at most this many Newton
+  // iterations on the three boost
+  // parameters, while the decrease of F they predict exceeds this share of what the step itself achieved.
+  int least_distortion_boost_iterations = 3;
+  double least_distortion_boost_share = 0.01;
   // Its multilevel start (multilevel_least_distortion.h): meshes of at least this many vertices over the coarsening
   // ratio get coarser levels, the coarsest of at least this many (CGAL's man coarsened to 273 vertices had slivers
   // whose minimum was not reached in 2,000 steps; at 1,093 it took 35); each coarser level's minimization stops at this

@@ -18,13 +18,16 @@
 // set of bijective maps: a minimization, unlike the balance equations (a saddle), and its stationarity can be tested.
 // Newton's method in the tangent planes: per-face Hessians projected on their positive part until full steps are
 // accepted, then the whole Hessian while its factorization stays positive definite; a Marquardt shift on the diagonal;
-// every trial point keeps every face positive. The manual's Method section says why and what it gives.
+// every trial point keeps every face positive; before the first step and after each one the three Moebius boosts,
+// along which F is nearly flat, are balanced by Newton's method of their own (balance_distortion_boosts). The manual's Method section says why
+// and what it gives.
 
 #ifndef CGAL_SPHERICAL_PARAMETERIZATION_INTERNAL_STAGE3_LEAST_DISTORTION_H
 #define CGAL_SPHERICAL_PARAMETERIZATION_INTERNAL_STAGE3_LEAST_DISTORTION_H
 
 #include <CGAL/Spherical_parameterization/internal/Vector3.h>
 #include <CGAL/Spherical_parameterization/internal/iteration_driver.h>
+#include <CGAL/Spherical_parameterization/internal/stage3/mobius.h>
 #include <CGAL/Spherical_parameterization/internal/stage3/sparse_factorization.h>
 
 #include <CGAL/Real_timer.h>
@@ -49,6 +52,7 @@ struct Least_distortion_report
   bool out_of_time = false;
   bool cancelled = false;
   std::size_t newton_steps = 0; // steps taken (accepted by the line search)
+  std::size_t boosts = 0;       // boosts applied between them (balance_distortion_boosts)
   double energy = -1.; // F (3D areas summing to 1): about 1 when every small triangle keeps its shape
   double max_stationarity = -1.; // max_k sigma_k, 0 for the vertices within their rounding floor
   std::size_t unstationary_vertices = 0;
@@ -114,11 +118,16 @@ inline double face_energy(const Face_shape& shape, const V3 (&p)[3], Vector9* gr
     L(i, j) -= shape.cot[k];
     L(j, i) -= shape.cot[k];
   }
+  // grad_q and grad_det in the relative form too (L's rows sum to 0; p_j x p_k = p_i x (p_k - p_j) + (p_j - p_i) x
+  // (p_k - p_i)): the absolute forms sum_j L_ij p_j and p_j x p_k lost five digits to cancellation on faces squeezed to
+  // edges of 1e-10 (CGAL's bull: the gradient's sum along a boost came out as 14.6 where differences of F give 0.001),
+  // and the minimization crawled on that noise.
   Vector9 grad_q, grad_det, grad_c;
   for(int i = 0; i < 3; ++i)
   {
-    grad_q.segment<3>(3 * i) = 2. * (L(i, 0) * p[0] + L(i, 1) * p[1] + L(i, 2) * p[2]);
-    grad_det.segment<3>(3 * i) = p[(i + 1) % 3].cross(p[(i + 2) % 3]);
+    const int j = (i + 1) % 3, k = (i + 2) % 3;
+    grad_q.segment<3>(3 * i) = 2. * (L(i, j) * (p[j] - p[i]) + L(i, k) * (p[k] - p[i]));
+    grad_det.segment<3>(3 * i) = p[i].cross(p[k] - p[j]) + (p[j] - p[i]).cross(p[k] - p[i]);
     grad_c.segment<3>(3 * i) = c / (3. * c_norm);
   }
   const Vector9 grad_s = scale * (grad_det / c_norm - det * grad_c / (c_norm * c_norm));
@@ -178,6 +187,114 @@ inline bool face_shapes(const std::vector<std::array<int, 3>>& triangles, const 
       return false; // a degenerate 3D triangle: no shape to keep
   }
   return true;
+}
+
+// F face by face at z (`terms`) and its gradient along the three boosts, sum_i of the tangential part of grad_i F
+// (the boost field of e_l at z_i is e_l - (e_l . z_i) z_i); false if a face is not positive.
+inline bool energy_and_boost_gradient(const std::vector<std::array<int, 3>>& triangles,
+                                      const std::vector<Face_shape>& shapes, const std::vector<V3>& z,
+                                      std::vector<double>& terms, V3& gradient)
+{
+  gradient.setZero();
+  terms.resize(triangles.size());
+  for(std::size_t f = 0; f < triangles.size(); ++f)
+  {
+    V3 p[3];
+    for(int k = 0; k < 3; ++k)
+      p[k] = z[static_cast<std::size_t>(triangles[f][k])];
+    if(!(orientation(p[0], p[1], p[2]) > 0.))
+      return false;
+    Vector9 g;
+    terms[f] = face_energy(shapes[f], p, &g);
+    for(int k = 0; k < 3; ++k)
+    {
+      const V3 gk = g.segment<3>(3 * k);
+      gradient += gk - gk.dot(p[k]) * p[k];
+    }
+  }
+  return true;
+}
+
+inline void apply_boost(const std::vector<V3>& z, const V3& c, std::vector<V3>& out)
+{
+  const Boost boost(Vector3(c[0], c[1], c[2]));
+  out.resize(z.size());
+  for(std::size_t i = 0; i < z.size(); ++i)
+  {
+    const Vector3 b = boost(Vector3(z[i][0], z[i][1], z[i][2]));
+    out[i] = V3(b.x, b.y, b.z);
+  }
+}
+
+// F is nearly invariant under the Moebius boosts of the sphere (conformal maps: only the flat triangles through the
+// sphere points tell them apart), so its Hessian is nearly singular along them and the Marquardt-shifted steps crawl
+// there (from CGAL's bull after 1,000 steps, one exact boost of length 0.78 lowered F from 1.06226 to 1.05963, two
+// thirds of the way to its minimum; its Hessian along the boosts: 0.004 to 0.012). Here Newton's method on the three
+// boost parameters, their Hessian from forward differences of the boost gradient, each boost applied exactly
+// (mobius.h), halved until F falls enough with every face positive; skipped where that Hessian is not positive
+// definite (far from the minimum). At most `iterations`, while the decrease it predicts exceeds `share` times
+// `reference` (what the last Newton step achieved; 0 before the first). Returns the number of boosts applied.
+inline std::size_t balance_distortion_boosts(const std::vector<std::array<int, 3>>& triangles,
+                                             const std::vector<Face_shape>& shapes, std::vector<V3>& y,
+                                             int iterations, double share, double reference)
+{
+  // A boost rounds every position again, which changes a face with edges of 1e-11 by eps / 1e-11 ~ 2e-5 of its size:
+  // differences over boosts of 1e-5 were noise on a map with such faces (an indefinite Hessian), over 1e-3 they agree
+  // with central differences.
+  const double difference_step = 1e-3;
+  std::vector<double> terms, trial_terms;
+  std::vector<V3> trial;
+  std::size_t applied = 0;
+  V3 gradient;
+  if(!energy_and_boost_gradient(triangles, shapes, y, terms, gradient))
+    return 0;
+  for(int iteration = 0; iteration < iterations; ++iteration)
+  {
+    Eigen::Matrix3d hessian;
+    for(int l = 0; l < 3; ++l)
+    {
+      V3 moved;
+      apply_boost(y, difference_step * V3::Unit(l), trial);
+      if(!energy_and_boost_gradient(triangles, shapes, trial, trial_terms, moved))
+        return applied;
+      hessian.col(l) = (moved - gradient) / difference_step;
+    }
+    hessian = (0.5 * (hessian + hessian.transpose())).eval();
+    const Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> eigen(hessian);
+    if(eigen.info() != Eigen::Success || !(eigen.eigenvalues()[0] > 0.))
+      break;
+    V3 step = -(eigen.eigenvectors() * eigen.eigenvalues().cwiseInverse().asDiagonal()
+                * eigen.eigenvectors().transpose() * gradient);
+    const double slope = gradient.dot(step);
+    double energy = 0.;
+    for(double term : terms)
+      energy += term;
+    // Below the rounding of F's terms a predicted decrease is noise.
+    const double noise = 64. * std::numeric_limits<double>::epsilon() * energy;
+    if(!(-0.5 * slope > std::max(share * reference, noise)))
+      break;
+    step *= std::min(1., 1. / step.norm()); // a boost of length 1 at most (mobius.h's steps too)
+    V3 next_gradient;
+    double t = 1.;
+    bool accepted = false;
+    for(int tries = 0; tries < 10 && !accepted; ++tries, t *= 0.5) // down to 1/512 of the step
+    {
+      apply_boost(y, t * step, trial);
+      if(!energy_and_boost_gradient(triangles, shapes, trial, trial_terms, next_gradient))
+        continue;
+      double change = 0.; // face by face, as energy_change() in the minimization
+      for(std::size_t f = 0; f < terms.size(); ++f)
+        change += trial_terms[f] - terms[f];
+      accepted = change <= 1e-4 * t * std::min(0., gradient.dot(step));
+    }
+    if(!accepted)
+      break;
+    y.swap(trial);
+    terms.swap(trial_terms);
+    gradient = next_gradient;
+    ++applied;
+  }
+  return applied;
 }
 
 } // namespace least_distortion_detail
@@ -315,7 +432,7 @@ inline void smooth_conformal_distortion(const std::vector<std::array<int, 3>>& t
 // of the vertex's rows of the Hessian: eps / h_k times a constant on faces of good shape, far more on slivers squeezed
 // to edges of 1e-11 (CGAL's man: the stationarity of such vertices wandered between 1e-3 and 2e-2 for 80 steps, within
 // a few times their r_k floor). The test is sigma_k <= max(tolerance, 64 eps / h_k, 8 eps r_k h_k / a_k).
-// The steps' Marquardt shift and its floor: Solver_tuning::least_distortion_marquardt_floor and the ones after it.
+// The steps' Marquardt shift falls to Solver_tuning::least_distortion_marquardt_floor after full steps.
 inline Least_distortion_report minimize_conformal_distortion(const std::vector<std::array<int, 3>>& triangles,
                                                              const std::vector<Vector3>& points, std::vector<Vector3>& x,
                                                              const Iteration_options& options,
@@ -360,6 +477,9 @@ inline Least_distortion_report minimize_conformal_distortion(const std::vector<s
   if(!all_positive(y))
     return report;
   report.started = true;
+  const Solver_tuning& tuning = options.tuning;
+  report.boosts += balance_distortion_boosts(triangles, shapes, y, tuning.least_distortion_boost_iterations,
+                                             tuning.least_distortion_boost_share, 0.);
 
   const double floor_scale = 64. * std::numeric_limits<double>::epsilon();
   const double rounding_floor_factor = 8.;
@@ -371,10 +491,7 @@ inline Least_distortion_report minimize_conformal_distortion(const std::vector<s
   std::vector<Eigen::Triplet<double>> entries;
   Sparse_ldlt factorization;
   double marquardt = 1e-6;
-  // The shift's floor, and the full steps in a row that it capped (Solver_tuning::least_distortion_marquardt_floor).
-  double marquardt_floor = options.tuning.least_distortion_marquardt_floor;
-  std::size_t capped_steps = 0;
-  double previous_decrease = 0.;
+  const double marquardt_floor = options.tuning.least_distortion_marquardt_floor;
   bool whole_hessian = false;
   std::size_t failures = 0;
   // Each pass measures the current iterate (F, its gradient and stationarity: what the report gives), then stops or
@@ -551,17 +668,9 @@ inline Least_distortion_report minimize_conformal_distortion(const std::vector<s
     }
     ++report.newton_steps;
     failures = 0;
-    const bool capped = accepted == first && marquardt <= marquardt_floor && previous_decrease > 0.
-                        && decrease >= options.tuning.least_distortion_capped_ratio * previous_decrease;
-    capped_steps = capped ? capped_steps + 1 : 0;
-    if(capped_steps >= options.tuning.least_distortion_capped_steps)
-    {
-      const double lowered = std::max(options.tuning.least_distortion_lowest_marquardt_floor, 0.01 * marquardt_floor);
-      marquardt_floor = std::min(marquardt_floor, lowered); // never raised by a tuning whose lowest is above it
-      capped_steps = 0;
-    }
-    previous_decrease = decrease;
     y.swap(trial);
+    report.boosts += balance_distortion_boosts(triangles, shapes, y, tuning.least_distortion_boost_iterations,
+                                               tuning.least_distortion_boost_share, decrease);
     // Judged against the first trial length (a full step, or the half-radian cap).
     if(accepted == first)
       marquardt = std::max(marquardt_floor, marquardt / 10.);
