@@ -1368,7 +1368,7 @@ TEST(LeastDistortion, BalancesTheBoosts)
     return sum;
   };
   const double lowest = energy(minimum);
-  D::apply_boost(minimum, D::V3(0.3, -0.2, 0.4), y);
+  D::boost_map(minimum, D::V3(0.3, -0.2, 0.4), y);
   ASSERT_GT(energy(y), lowest + 1e-3);
   std::vector<D::V3> kept = y;
   EXPECT_EQ(D::balance_distortion_boosts(arrays.triangles, shapes, kept, 3, 0.01, 1e3), 0u); // 1% of 1e3 > F's range

@@ -89,8 +89,8 @@ struct Solver_tuning
   // triceratops at stationarity 2.4e-6, where no step lowered F above its rounding (the manual's Method section).
   double least_distortion_marquardt_floor = 1e-12;
   // Its boosts (balance_distortion_boosts): before the first step and after each one, at most this many Newton
-  // iterations on the three boost
-  // parameters, while the decrease of F they predict exceeds this share of what the step itself achieved.
+  // iterations on the three boost parameters, while the decrease of F they predict exceeds this share of what the
+  // step itself achieved.
   int least_distortion_boost_iterations = 3;
   double least_distortion_boost_share = 0.01;
   // Its multilevel start (multilevel_least_distortion.h): meshes of at least this many vertices over the coarsening

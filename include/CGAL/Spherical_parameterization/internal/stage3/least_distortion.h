@@ -19,8 +19,8 @@
 // Newton's method in the tangent planes: per-face Hessians projected on their positive part until full steps are
 // accepted, then the whole Hessian while its factorization stays positive definite; a Marquardt shift on the diagonal;
 // every trial point keeps every face positive; before the first step and after each one the three Moebius boosts,
-// along which F is nearly flat, are balanced by Newton's method of their own (balance_distortion_boosts). The manual's Method section says why
-// and what it gives.
+// along which F is nearly flat, are balanced by Newton's method of their own (balance_distortion_boosts). The
+// manual's Method section says why and what it gives.
 
 #ifndef CGAL_SPHERICAL_PARAMETERIZATION_INTERNAL_STAGE3_LEAST_DISTORTION_H
 #define CGAL_SPHERICAL_PARAMETERIZATION_INTERNAL_STAGE3_LEAST_DISTORTION_H
@@ -215,7 +215,8 @@ inline bool energy_and_boost_gradient(const std::vector<std::array<int, 3>>& tri
   return true;
 }
 
-inline void apply_boost(const std::vector<V3>& z, const V3& c, std::vector<V3>& out)
+// `out`: the map z moved by the boost with vector c (mobius.h's Boost, applied to every vertex).
+inline void boost_map(const std::vector<V3>& z, const V3& c, std::vector<V3>& out)
 {
   const Boost boost(Vector3(c[0], c[1], c[2]));
   out.resize(z.size());
@@ -254,7 +255,7 @@ inline std::size_t balance_distortion_boosts(const std::vector<std::array<int, 3
     for(int l = 0; l < 3; ++l)
     {
       V3 moved;
-      apply_boost(y, difference_step * V3::Unit(l), trial);
+      boost_map(y, difference_step * V3::Unit(l), trial);
       if(!energy_and_boost_gradient(triangles, shapes, trial, trial_terms, moved))
         return applied;
       hessian.col(l) = (moved - gradient) / difference_step;
@@ -279,7 +280,7 @@ inline std::size_t balance_distortion_boosts(const std::vector<std::array<int, 3
     bool accepted = false;
     for(int tries = 0; tries < 10 && !accepted; ++tries, t *= 0.5) // down to 1/512 of the step
     {
-      apply_boost(y, t * step, trial);
+      boost_map(y, t * step, trial);
       if(!energy_and_boost_gradient(triangles, shapes, trial, trial_terms, next_gradient))
         continue;
       double change = 0.; // face by face, as energy_change() in the minimization
