@@ -1039,6 +1039,11 @@ TEST(LeastDistortion, MultilevelStart)
   ASSERT_FALSE(levels.levels.empty());
   for(std::size_t l = 1; l < levels.levels.size(); ++l)
     EXPECT_LT(levels.levels[l - 1].vertices, levels.levels[l].vertices);
+  for(const SPI::Least_distortion_level& level : levels.levels) // the sweeps stop when they stall, not at the cap
+  {
+    EXPECT_GE(level.smoothing_sweeps, 2);
+    EXPECT_LT(level.smoothing_sweeps, SPI::Solver_tuning().least_distortion_max_smoothing_sweeps);
+  }
   EXPECT_LT(levels.levels.back().vertices, arrays.points.size());
   ASSERT_EQ(x.size(), arrays.points.size());
   const double start = SPI::conformal_distortion(arrays.triangles, arrays.points, x);
@@ -1381,6 +1386,43 @@ TEST(LeastDistortion, BalancesTheBoosts)
 
 // The minimization itself on an icosahedron from a perturbed map: it takes steps, ends stationary, reports the energy
 // of the map it returns, never above the start's; started again from its result, it is stationary without a step.
+// The smoother of the multilevel start: its sweeps lower F, stop once a sweep lowers it by at least the stall share
+// of the one before (the local error is gone; what is left is smooth), and respect their cap.
+TEST(LeastDistortion, SmoothingStopsWhenItStalls)
+{
+  Mesh mesh;
+  CGAL::make_icosahedron(mesh, Point(0, 0, 0), 1.);
+  CGAL::Subdivision_method_3::Loop_subdivision(mesh, CGAL::parameters::number_of_iterations(3)); // 642 vertices
+  const SPI::Mesh_arrays arrays = arrays_of(mesh);
+  std::vector<SPI::Vector3> start = arrays.points;
+  std::mt19937 random(3);
+  std::uniform_real_distribution<double> noise(-0.01, 0.01); // below the edge length (about 0.15): no fold
+  for(SPI::Vector3& p : start)
+  {
+    p = SPI::Vector3(p.x + noise(random), p.y + noise(random), p.z + noise(random));
+    p = (1. / std::sqrt(SPI::dot(p, p))) * p;
+  }
+  const double before = SPI::conformal_distortion(arrays.triangles, arrays.points, start);
+  ASSERT_TRUE(std::isfinite(before));
+  SPI::Iteration_options options;
+  CGAL::Real_timer clock;
+  clock.start();
+  std::vector<SPI::Vector3> x = start;
+  const int sweeps = SPI::smooth_conformal_distortion(arrays.triangles, arrays.points, x, 1000, 0.7, options, clock);
+  EXPECT_GE(sweeps, 2);
+  EXPECT_LT(sweeps, 100); // 11 here; with a stall share of 1 (only a sweep that lowers nothing stops) 649
+  std::vector<SPI::Vector3> never_stalls = start;
+  EXPECT_EQ(SPI::smooth_conformal_distortion(arrays.triangles, arrays.points, never_stalls, 200, 1., options, clock),
+            200);
+  const double smoothed = SPI::conformal_distortion(arrays.triangles, arrays.points, x);
+  EXPECT_LT(smoothed, before);
+  std::vector<SPI::Vector3> capped = start;
+  EXPECT_EQ(SPI::smooth_conformal_distortion(arrays.triangles, arrays.points, capped, 1, 0.7, options, clock), 1);
+  const double one_sweep = SPI::conformal_distortion(arrays.triangles, arrays.points, capped);
+  EXPECT_LT(one_sweep, before);
+  EXPECT_LE(smoothed, one_sweep);
+}
+
 TEST(LeastDistortion, MinimizesFromAPerturbedMap)
 {
   Mesh mesh;

@@ -715,7 +715,9 @@ private:
     if(m_options.verbose)
       for(const Least_distortion_level& level : levels.levels)
         std::cerr << "least distortion: level of " << level.vertices << " vertices, " << level.newton_steps
-                  << " Newton steps" << (level.stationary ? " (stationary)" : "") << ", " << level.seconds << " s\n";
+                  << " Newton steps" << (level.stationary ? " (stationary)" : "") << ", " << level.seconds
+                  << " s; carried back: " << level.smoothing_sweeps << " sweeps of Gauss-Seidel, "
+                  << level.smoothing_seconds << " s\n";
     if(!multilevel && !stopped && !m_cancelled && !has_tutte_weights(m_system) && !past_time_budget(options, clock)
        && !compute_tutte_map(other))
       other.clear(); // only a certified Tutte's map is a start, as before the multilevel start

@@ -97,11 +97,13 @@ struct Solver_tuning
   // ratio get coarser levels, the coarsest of at least this many (CGAL's man coarsened to 273 vertices had slivers
   // whose minimum was not reached in 2,000 steps; at 1,093 it took 35); each coarser level's minimization stops at this
   // stationarity or this many steps (it only needs to settle the map's global shape: on vol2surf_lh_pial the mesh's
-  // tolerance cost 14 s on two levels); vertices carried back get this many sweeps of nonlinear Gauss-Seidel.
+  // tolerance cost 14 s on two levels); vertices carried back get sweeps of nonlinear Gauss-Seidel until one lowers F
+  // by at least this share of what the sweep before did (smooth_conformal_distortion), at most this many.
   std::size_t least_distortion_coarsest_vertices = 1000;
   std::size_t least_distortion_coarse_max_steps = 100;
   double least_distortion_coarse_tolerance = 1e-4;
-  int least_distortion_smoothing_sweeps = 3;
+  double least_distortion_smoothing_stall = 0.7;
+  int least_distortion_max_smoothing_sweeps = 100;
   // With a time budget, the ways to the balanced map of weights other than Tutte's get this share of it when the
   // minimization follows them; the minimization gets the rest (the large meshes' attempts took the whole 60 s before:
   // CGAL's horse and Oded's scorpion never reached the minimization).

@@ -37,6 +37,8 @@ struct Least_distortion_level
   std::size_t newton_steps = 0;
   bool stationary = false;
   double seconds = 0.;
+  int smoothing_sweeps = 0; // of its map carried back to the next finer level (smooth_conformal_distortion)
+  double smoothing_seconds = 0.;
 };
 
 struct Multilevel_least_distortion_report
@@ -106,14 +108,18 @@ bool multilevel_least_distortion_start(const std::vector<Vector3>& points,
     figures.newton_steps = report.newton_steps;
     figures.stationary = report.stationary;
     figures.seconds = clock.time() - start_time;
-    multilevel.levels.push_back(figures);
     std::vector<Vector3> finer;
     // A vertex left folded (no positive place in its ring, which rounding alone should cause) makes F infinite: no
     // start (the caller falls back to Tutte's map). Smoothing cannot unfold it.
     if(prolong(hierarchy[level - 1], y, finer, Insertion::KERNEL_CENTRE) != 0)
       return false;
-    smooth_conformal_distortion(level_triangles(level - 1), level_points(level - 1), finer,
-                                tuning.least_distortion_smoothing_sweeps);
+    const double smoothing_start = clock.time();
+    figures.smoothing_sweeps =
+        smooth_conformal_distortion(level_triangles(level - 1), level_points(level - 1), finer,
+                                    tuning.least_distortion_max_smoothing_sweeps,
+                                    tuning.least_distortion_smoothing_stall, options, clock);
+    figures.smoothing_seconds = clock.time() - smoothing_start;
+    multilevel.levels.push_back(figures);
     y.swap(finer);
   }
   // The same test as the minimization's (every face positive in its orientation), which the exact predicate of
