@@ -390,6 +390,7 @@ inline int smooth_conformal_distortion(const std::vector<std::array<int, 3>>& tr
   double last_decrease = 0.;
   while(sweep < max_sweeps)
   {
+    const double sweep_start = clock.time();
     double decrease = 0.;
     for(std::size_t v = 0; v < n; ++v)
     {
@@ -434,9 +435,9 @@ inline int smooth_conformal_distortion(const std::vector<std::array<int, 3>>& tr
       }
     }
     ++sweep;
-    if(!(decrease > 0.) || (sweep > 1 && decrease >= stall * last_decrease) || past_time_budget(options, clock)
-       || options.cancel_requested())
-      break;
+    if(!(decrease > 0.) || (sweep > 1 && decrease >= stall * last_decrease) || options.cancel_requested()
+       || (options.max_seconds >= 0. && 2. * clock.time() - sweep_start > options.max_seconds))
+      break; // (the last test: the next sweep, as long as this one, would end past the budget)
     last_decrease = decrease;
   }
   for(std::size_t i = 0; i < n; ++i)
@@ -519,8 +520,12 @@ inline Least_distortion_report minimize_conformal_distortion(const std::vector<s
   double noise_step_stationarity = std::numeric_limits<double>::infinity();
   // Each pass measures the current iterate (F, its gradient and stationarity: what the report gives), then stops or
   // takes a step.
+  double pass_start = clock.time(), last_pass_seconds = 0.;
   for(;;)
   {
+    if(report.newton_steps > 0 || failures > 0)
+      last_pass_seconds = clock.time() - pass_start;
+    pass_start = clock.time();
     for(int i = 0; i < n; ++i)
     {
       const V3 a = std::abs(y[i][0]) < 0.6 ? V3(1., 0., 0.) : V3(0., 1., 0.);
@@ -623,7 +628,10 @@ inline Least_distortion_report minimize_conformal_distortion(const std::vector<s
       report.cancelled = true;
       break;
     }
-    if(past_time_budget(options, clock))
+    // A step (a factorization: seconds on brain cortices) cannot be interrupted: none is started that the last
+    // pass's duration says would end past the budget.
+    if(past_time_budget(options, clock)
+       || (options.max_seconds >= 0. && clock.time() + last_pass_seconds > options.max_seconds))
     {
       report.out_of_time = true;
       break;
