@@ -83,6 +83,14 @@ inline bool past_time_budget(const Iteration_options& options, const CGAL::Real_
   return options.max_seconds >= 0. && clock.time() > options.max_seconds;
 }
 
+// Whether a part that cannot be interrupted (a factorization, a sweep), as long as the last one (`last_seconds`),
+// would end past the time budget if started now.
+inline bool next_part_passes_time_budget(const Iteration_options& options, const CGAL::Real_timer& clock,
+                                         double last_seconds)
+{
+  return options.max_seconds >= 0. && clock.time() + last_seconds > options.max_seconds;
+}
+
 // The stopping test of every solver: no non-positive face, and every vertex balanced in its own scale (or the
 // paper's Res below the tolerance, when that test was chosen). For non-symmetric weights, whose equations generally
 // have no exact solution, the imbalance test bounds the stationarity of their least-squares problem instead.

@@ -615,7 +615,7 @@ inline Least_squares_report imbalance_least_squares(Sphere_state& state, const I
     // A step is one sparse LU that cannot be interrupted (seconds on brain cortices): none is started that the
     // previous one's duration says would end past the budget.
     if(past_time_budget(options, clock)
-       || (options.max_seconds >= 0. && clock.time() + last_step_seconds > options.max_seconds))
+       || next_part_passes_time_budget(options, clock, last_step_seconds))
     {
       report.out_of_time = true;
       break;

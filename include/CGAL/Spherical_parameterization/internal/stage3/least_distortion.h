@@ -436,8 +436,8 @@ inline int smooth_conformal_distortion(const std::vector<std::array<int, 3>>& tr
     }
     ++sweep;
     if(!(decrease > 0.) || (sweep > 1 && decrease >= stall * last_decrease) || options.cancel_requested()
-       || (options.max_seconds >= 0. && 2. * clock.time() - sweep_start > options.max_seconds))
-      break; // (the last test: the next sweep, as long as this one, would end past the budget)
+       || next_part_passes_time_budget(options, clock, clock.time() - sweep_start))
+      break;
     last_decrease = decrease;
   }
   for(std::size_t i = 0; i < n; ++i)
@@ -631,7 +631,7 @@ inline Least_distortion_report minimize_conformal_distortion(const std::vector<s
     // A step (a factorization: seconds on brain cortices) cannot be interrupted: none is started that the last
     // pass's duration says would end past the budget.
     if(past_time_budget(options, clock)
-       || (options.max_seconds >= 0. && clock.time() + last_pass_seconds > options.max_seconds))
+       || next_part_passes_time_budget(options, clock, last_pass_seconds))
     {
       report.out_of_time = true;
       break;
