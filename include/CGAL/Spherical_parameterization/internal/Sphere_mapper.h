@@ -730,9 +730,15 @@ private:
       if(from_other < reached)
         y.swap(other);
     }
+    // The first step on the mesh is expected to take the last coarser level's, scaled by the vertices (its
+    // factorization cannot be interrupted); a coarser level stopped by the budget leaves no time for it.
+    double first_step_seconds = 0.;
+    if(!levels.levels.empty() && levels.levels.back().vertices > 0)
+      first_step_seconds = levels.levels.back().last_step_seconds * static_cast<double>(m_system.number_of_vertices)
+                           / static_cast<double>(levels.levels.back().vertices);
     Least_distortion_report report; // the time budget counts from `clock`'s start, Tutte's map included
-    if(!m_cancelled && !past_time_budget(options, clock))
-      report = minimize_conformal_distortion(m_system.triangles, m_mesh.points, y, options, clock);
+    if(!m_cancelled && !levels.out_of_time && !past_time_budget(options, clock))
+      report = minimize_conformal_distortion(m_system.triangles, m_mesh.points, y, options, clock, first_step_seconds);
     m_cancelled = m_cancelled || report.cancelled;
     if(m_options.verbose)
       std::cerr << "least distortion: " << (report.started ? "" : "not started, ") << report.newton_steps

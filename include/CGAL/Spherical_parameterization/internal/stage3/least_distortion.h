@@ -58,6 +58,7 @@ struct Least_distortion_report
   double max_stationarity = -1.; // max_k sigma_k, 0 for the vertices within their rounding floor
   std::size_t unstationary_vertices = 0;
   std::size_t vertices_at_rounding_floor = 0; // sigma_k above the tolerance but within its rounding floor
+  double last_step_seconds = 0.; // the last pass that took or tried a step: its assembly, factorization, line search
 };
 
 namespace least_distortion_detail {
@@ -446,8 +447,10 @@ inline int smooth_conformal_distortion(const std::vector<std::array<int, 3>>& tr
 }
 
 // Minimizes F from `x` (unit vectors, every face positive) over bijective maps; `x` holds the last iterate (each one
-// is better than the one before). Stops when every vertex is stationary, at `options.max_newton_sweeps`, the time
-// budget, a cancel, or when no step lowers F any more.
+// lower in F than the one before, except the steps judged on F's rounding, see below_noise). Stops when every vertex
+// is stationary, at `options.max_newton_sweeps`, the time budget, a cancel, or when no step lowers F any more.
+// `first_pass_seconds`: what the first step is expected to take (the budget test of the later steps uses the last
+// one's duration), for instance scaled from a coarser level's; 0 when unknown.
 // Stationarity of vertex k: sigma_k = |grad_k F| h_k / a_k, h_k the mean chord length of its edges, a_k the
 // weight of its faces: the change of F, relative to its faces' share, per move of its own edge length. Its rounding
 // floor (positions rounded to double, |dx| ~ eps = 2^-52) is about eps r_k h_k / a_k, r_k the larger absolute row sum
@@ -458,7 +461,8 @@ inline int smooth_conformal_distortion(const std::vector<std::array<int, 3>>& tr
 inline Least_distortion_report minimize_conformal_distortion(const std::vector<std::array<int, 3>>& triangles,
                                                              const std::vector<Vector3>& points, std::vector<Vector3>& x,
                                                              const Iteration_options& options,
-                                                             const CGAL::Real_timer& clock)
+                                                             const CGAL::Real_timer& clock,
+                                                             double first_pass_seconds = 0.)
 {
   using namespace least_distortion_detail;
   Least_distortion_report report;
@@ -516,11 +520,12 @@ inline Least_distortion_report minimize_conformal_distortion(const std::vector<s
   const double marquardt_floor = options.tuning.least_distortion_marquardt_floor;
   bool whole_hessian = false;
   std::size_t failures = 0;
-  // The stationarity before the last step taken on rounding alone (see below_noise): the next such step needs less.
+  // The stationarity before the last step taken on rounding alone (see below_noise): the next such step needs less,
+  // until a step lowers F for real.
   double noise_step_stationarity = std::numeric_limits<double>::infinity();
   // Each pass measures the current iterate (F, its gradient and stationarity: what the report gives), then stops or
   // takes a step.
-  double pass_start = clock.time(), last_pass_seconds = 0.;
+  double pass_start = clock.time(), last_pass_seconds = std::max(0., first_pass_seconds);
   for(;;)
   {
     if(report.newton_steps > 0 || failures > 0)
@@ -711,6 +716,8 @@ inline Least_distortion_report minimize_conformal_distortion(const std::vector<s
         decrease = -change;
         if(judged_by_rounding && !(change <= 1e-4 * t * slope))
           noise_step_stationarity = report.max_stationarity;
+        else
+          noise_step_stationarity = std::numeric_limits<double>::infinity(); // F went down: no cycle to guard
         break;
       }
     }
@@ -734,6 +741,7 @@ inline Least_distortion_report minimize_conformal_distortion(const std::vector<s
       marquardt *= 4.;
     whole_hessian = accepted == first;
   }
+  report.last_step_seconds = last_pass_seconds;
   for(int i = 0; i < n; ++i)
     x[i] = Vector3(y[i][0], y[i][1], y[i][2]);
   return report;

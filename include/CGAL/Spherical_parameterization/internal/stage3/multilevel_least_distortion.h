@@ -39,6 +39,7 @@ struct Least_distortion_level
   double seconds = 0.;
   int smoothing_sweeps = 0; // of its map carried back to the next finer level (smooth_conformal_distortion)
   double smoothing_seconds = 0.;
+  double last_step_seconds = 0.; // its last step's duration (Least_distortion_report::last_step_seconds)
 };
 
 struct Multilevel_least_distortion_report
@@ -108,18 +109,19 @@ bool multilevel_least_distortion_start(const std::vector<Vector3>& points,
     figures.newton_steps = report.newton_steps;
     figures.stationary = report.stationary;
     figures.seconds = clock.time() - start_time;
+    figures.last_step_seconds = report.last_step_seconds;
+    multilevel.levels.push_back(figures);
     std::vector<Vector3> finer;
     // A vertex left folded (no positive place in its ring, which rounding alone should cause) makes F infinite: no
     // start (the caller falls back to Tutte's map). Smoothing cannot unfold it.
     if(prolong(hierarchy[level - 1], y, finer, Insertion::KERNEL_CENTRE) != 0)
       return false;
     const double smoothing_start = clock.time();
-    figures.smoothing_sweeps =
+    multilevel.levels.back().smoothing_sweeps =
         smooth_conformal_distortion(level_triangles(level - 1), level_points(level - 1), finer,
                                     tuning.least_distortion_max_smoothing_sweeps,
                                     tuning.least_distortion_smoothing_stall, options, clock);
-    figures.smoothing_seconds = clock.time() - smoothing_start;
-    multilevel.levels.push_back(figures);
+    multilevel.levels.back().smoothing_seconds = clock.time() - smoothing_start;
     y.swap(finer);
   }
   // The same test as the minimization's (every face positive in its orientation), which the exact predicate of
