@@ -171,7 +171,8 @@ void print_usage(std::ostream& out)
          "  when none),\n"
          "  least_distortion_map, distortion_energy, max_distortion_stationarity, least_distortion_steps,\n"
          "  distortion_vertices_at_rounding_floor (--least-distortion: whether the map returned is the bijective\n"
-         "  map of least conformal distortion; the other four null when it is not),\n"
+         "  map of least conformal distortion; the other four null when it is not), balanced_map_folded\n"
+         "  (--least-distortion: the weights' balanced map reached was folded, the minimization followed at once),\n"
          "  max_stationarity and unstationary_vertices (non-symmetric weights, else null), residual (Res),\n"
          "  max_tangential_residual, flipped_faces, total_signed_area, bijective,\n"
          "  distortion.{mean_angle_error_degrees,max_angle_error_degrees,log_area_ratio_stddev} (each corner's\n"
@@ -550,6 +551,7 @@ void print_json(std::ostream& out, const SP::Result& r, const Run_figures& run)
       {"regularized_tip_vertices", json_count(r.regularized_tip_vertices, computed)},
       {"held_weight_vertices", json_count(r.held_weight_vertices, computed)},
       {"least_distortion_map", boolean(r.least_distortion_map)},
+      {"balanced_map_folded", boolean(r.balanced_map_folded)},
       {"distortion_energy", json_number(r.distortion_energy, computed && r.least_distortion_map)},
       {"max_distortion_stationarity", json_number(r.max_distortion_stationarity, computed && r.least_distortion_map)},
       {"least_distortion_steps", json_count(r.least_distortion_steps, computed && r.least_distortion_map)},
@@ -630,7 +632,9 @@ void print_text(std::ostream& out, const SP::Result& r, const Run_figures& run)
            "map of the weights given: distortion "
         << r.distortion_energy << " (about 1: every small triangle keeps its shape), max stationarity " << r.max_distortion_stationarity
         << " after " << r.least_distortion_steps << " Newton steps ("
-        << r.distortion_vertices_at_rounding_floor << " vertices held to their rounding floor)\n";
+        << r.distortion_vertices_at_rounding_floor << " vertices held to their rounding floor)"
+        << (r.balanced_map_folded ? "; the balanced map of the weights given that Newton's steps reached is folded" : "")
+        << "\n";
   if(r.held_weight_vertices > 0)
     out << "held weights:    " << r.held_weight_vertices << " of the " << r.number_of_vertices
         << " vertices keep the weights blended with Tutte's at s >= " << r.held_weight_parameter

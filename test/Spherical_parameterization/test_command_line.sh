@@ -214,7 +214,7 @@ check_json "an output of --hold-weights kept for a run without it" "$scratch/hel
 # map of least conformal distortion, stationary (exit 0); the option is part of the request an output answers.
 "$tool" "$shared/oscad_pcbvicebar.off" --json -w cotangent --least-distortion -o "$scratch/least.off" > "$scratch/least.json" 2> /dev/null
 check "--least-distortion run" 0 $?
-check_json "--least-distortion figures" "$scratch/least.json" "o['status'] == 'OK' and o['least_distortion_map'] is True and o['distortion_energy'] >= 1 and 0 <= o['max_distortion_stationarity'] <= 1e-6 and o['least_distortion_steps'] > 0 and o['distortion_vertices_at_rounding_floor'] >= 0 and o['max_imbalance'] > 1e-6 and o['bijective'] is True"
+check_json "--least-distortion figures" "$scratch/least.json" "o['status'] == 'OK' and o['least_distortion_map'] is True and o['balanced_map_folded'] is True and o['distortion_energy'] >= 1 and 0 <= o['max_distortion_stationarity'] <= 1e-6 and o['least_distortion_steps'] > 0 and o['distortion_vertices_at_rounding_floor'] >= 0 and o['max_imbalance'] > 1e-6 and o['bijective'] is True"
 "$tool" "$shared/oscad_pcbvicebar.off" --json -w cotangent --least-distortion -o "$scratch/least.off" > "$scratch/least_again.json" 2> /dev/null
 check "--least-distortion again on its output" 0 $?
 check_json "an output of --least-distortion not kept for the same request" "$scratch/least_again.json" "o['skipped'] is True"
@@ -229,7 +229,7 @@ import json, math, os, sys
 keys = {"format", "input", "output", "status", "success", "skipped", "message", "vertices", "faces", "weights", "criterion", "tolerance",
         "max_imbalance", "imbalance_percentile_99", "unbalanced_vertices", "vertices_at_rounding_floor", "vertices_below_precision", "regularized_tip_vertices",
         "held_weight_vertices", "held_weight_parameter", "requested_weights_max_imbalance",
-        "least_distortion_map", "distortion_energy", "max_distortion_stationarity", "least_distortion_steps",
+        "least_distortion_map", "balanced_map_folded", "distortion_energy", "max_distortion_stationarity", "least_distortion_steps",
         "distortion_vertices_at_rounding_floor", "max_stationarity", "unstationary_vertices", "residual", "max_tangential_residual", "flipped_faces", "total_signed_area", "bijective",
         "distortion", "initial_flipped_faces", "uniform_initial_guess_fallback", "multilevel_fallback", "admissible_weights", "raised_weights", "clamped_weights",
         "rejected_moves", "separator_size",

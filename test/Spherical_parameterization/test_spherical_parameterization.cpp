@@ -1488,7 +1488,16 @@ TEST(SphericalParameterize, LeastDistortion)
     EXPECT_LE(result.max_distortion_stationarity, 1e-6);
     EXPECT_GT(result.least_distortion_steps, 0u);
     EXPECT_GT(result.max_imbalance, 1e-6); // not a balanced map of the weights given, and it says so
+    EXPECT_FALSE(result.balanced_map_folded); // its Newton steps end elsewhere (no balanced map reached)
     EXPECT_LT(with, without);
+  }
+  {
+    // Triceratops' cotangent weights: Newton's full steps reach a balanced map with non-positive faces. The other
+    // ways to a balanced map are skipped (balanced_map_folded), and the minimization gives the map.
+    const SP::Result result = run("triceratops.off", SP::Weighting::COTANGENT, true, &with);
+    EXPECT_EQ(result.status, SP::Error_code::OK) << result.message;
+    EXPECT_TRUE(result.least_distortion_map);
+    EXPECT_TRUE(result.balanced_map_folded);
   }
   {
     const SP::Result result = run("u.off", SP::Weighting::MEAN_VALUE, true, &with);
@@ -1510,6 +1519,7 @@ TEST(SphericalParameterize, LeastDistortion)
     const SP::Result result = run("sphere966.off", SP::Weighting::COTANGENT, true, &with);
     EXPECT_EQ(result.status, SP::Error_code::OK) << result.message;
     EXPECT_FALSE(result.least_distortion_map);
+    EXPECT_FALSE(result.balanced_map_folded);
     EXPECT_EQ(result.distortion_energy, -1.);
     EXPECT_LE(result.max_imbalance, 1e-6);
   }

@@ -133,6 +133,7 @@ py::dict result_dict(const SP::Result& r, const std::string& weights, const std:
   d["held_weight_parameter"] = r.held_weight_parameter;
   d["requested_weights_max_imbalance"] = number(r.requested_weights_max_imbalance);
   d["least_distortion_map"] = r.least_distortion_map;
+  d["balanced_map_folded"] = r.balanced_map_folded;
   d["distortion_energy"] = number(r.distortion_energy);
   d["max_distortion_stationarity"] = number(r.max_distortion_stationarity);
   d["least_distortion_steps"] = count_if(r.least_distortion_steps, r.least_distortion_map);

@@ -159,7 +159,9 @@ public:
     m_iteration_options.least_distortion_follows = minimization_follows && !m_options.hold_weights;
     if(multilevel_applies())
       m_multilevel_tried = true;
-    if(m_multilevel_tried && multilevel_start(x))
+    // A folded balanced map reached on the way (with least_distortion only) ends the ways to the balanced map: the
+    // multilevel start's figures stay.
+    if(m_multilevel_tried && (multilevel_start(x) || m_balanced_map_folded))
     {
       // Stage 1 is everything before this mesh's smoothing and Newton steps (the coarser levels, solved, and the map
       // carried back); stage 2 the smoothing.
@@ -237,7 +239,7 @@ private:
   // stationary in 30 s; likewise diplodocus, brainspace_conte69_32k and oded_hammer).
   bool multilevel_fallback_applies(const std::vector<Vector3>& x) const
   {
-    if(!m_options.multilevel || m_multilevel_tried || m_cancelled || m_no_balanced_solution
+    if(!m_options.multilevel || m_multilevel_tried || m_cancelled || m_no_balanced_solution || m_balanced_map_folded
        || m_options.nonlinear_solver != Nonlinear_solver::GLOBAL_NEWTON
        || (m_system.symmetric && m_system.number_of_vertices >= m_options.iterations.tuning.multilevel_min_vertices)
        || m_system.number_of_vertices < m_options.iterations.tuning.multilevel_fallback_min_vertices
@@ -305,7 +307,7 @@ private:
       return true;
     const bool budget_left =
         !(m_options.iterations.max_seconds >= 0. && m_options.call_clock.time() >= m_options.iterations.max_seconds);
-    if(m_options.coarse_level || m_cancelled || m_newton.out_of_time || !budget_left
+    if(m_options.coarse_level || m_cancelled || m_newton.out_of_time || !budget_left || m_balanced_map_folded
        || !(tuning.multilevel_retry_coarsening_ratio > tuning.multilevel_coarsening_ratio))
       return false;
     if(m_options.verbose)
@@ -365,6 +367,7 @@ private:
     coarsening = Coarsening();
     Iteration_options level_options = m_options.iterations;
     level_options.preconditioner_ahead = &m_preconditioner_ahead;
+    level_options.least_distortion_follows = m_iteration_options.least_distortion_follows;
     if(level_options.max_seconds >= 0.)
       level_options.max_seconds = std::max(0., level_options.max_seconds - m_options.call_clock.time());
     Sphere_state state(m_system, x);
@@ -384,8 +387,11 @@ private:
     // Non-symmetric weights (the multilevel fallback): the least-squares iterations from the map carried back.
     m_newton = m_system.symmetric ? full_newton_steps(state, level_options, iterations_clock, Boost_aim::ROOT)
                                   : least_squares_newton(state, level_options, iterations_clock);
+    // With least_distortion, a folded balanced map ends the ways to the balanced map (Iteration_options::
+    // least_distortion_follows): the map stays as the full steps left it, the minimization starts elsewhere.
+    m_balanced_map_folded = m_newton.balanced_map_folded && level_options.least_distortion_follows;
     if(m_system.symmetric && !m_newton.converged && !m_newton.cancelled && !m_newton.out_of_time
-       && smoothed_map_positive)
+       && smoothed_map_positive && !m_balanced_map_folded)
     {
       // The full steps folded their way astray, but the map carried back was bijective: from it, the steps that keep
       // every triangle positive (CGAL's man.off refined once: its level of 4,373 vertices converges in 7 such steps,
@@ -579,7 +585,8 @@ private:
         m_iteration_options.max_newton_sweeps = 0;
     }
     const double direct_seconds = direct_clock.time();
-    const bool direct_done = direct_newton.converged || direct_newton.out_of_time;
+    m_balanced_map_folded = direct_newton.balanced_map_folded && m_iteration_options.least_distortion_follows;
+    const bool direct_done = direct_newton.converged || direct_newton.out_of_time || m_balanced_map_folded;
 
     stage.reset();
     Iteration_report gauss_seidel;
@@ -604,6 +611,8 @@ private:
     else
       m_newton.residual = gauss_seidel.residual;
     m_cancelled = m_cancelled || m_newton.cancelled;
+    m_balanced_map_folded =
+        m_balanced_map_folded || (m_newton.balanced_map_folded && m_iteration_options.least_distortion_follows);
     if(!direct_done)
       m_system.regularized_tips = m_newton.regularized_tips;
     if(!direct_done && !m_newton.weight_holds.empty())
@@ -789,6 +798,7 @@ private:
     m_result.flipped_faces = certificate.flipped_faces;
     m_result.total_signed_area = certificate.total_signed_area;
     m_result.bijective = certificate.bijective;
+    m_result.balanced_map_folded = m_balanced_map_folded;
     std::vector<double> imbalances;
     const Imbalance_summary imbalance = summarize_imbalance(m_system, x, m_options.iterations.tolerance, &imbalances);
     m_result.max_imbalance = imbalance.max;
@@ -889,6 +899,9 @@ private:
   double m_multilevel_newton_seconds = 0.;
   bool m_least_distortion_stationary = false;
   bool m_multilevel_tried = false; // the multilevel start came first (multilevel_applies): no fallback to it
+  // With least_distortion: Newton's full steps reached a balanced map of the weights given that is folded
+  // (Iteration_report::balanced_map_folded); the other ways to a balanced map are skipped.
+  bool m_balanced_map_folded = false;
   // Last: destroyed first, it waits for its thread, which reads m_system.
   Laplacian_preconditioner_ahead m_preconditioner_ahead;
 };

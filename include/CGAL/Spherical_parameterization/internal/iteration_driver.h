@@ -53,7 +53,9 @@ struct Iteration_options
   // the weight continuation (weight_continuation.h), whose counts start again at each blend of the weights.
   const char* newton_stage = "global newton";
   // The least-distortion minimization follows where this call ends unconverged (named parameter least_distortion):
-  // global_newton() leaves out its last resort, the cautious Newton, whose map that minimization would replace.
+  // global_newton() leaves out its last resort, the cautious Newton, whose map that minimization would replace, and
+  // every way to the balanced map ends as soon as Newton's full steps reach a folded one
+  // (Iteration_report::balanced_map_folded): the minimization is the answer then.
   bool least_distortion_follows = false;
 
   bool cancel_requested() const { return keep_going && !keep_going(); }
@@ -75,6 +77,9 @@ struct Iteration_report
   // Per vertex the continuation parameter its weights are held at (weight_continuation.h) when the map returned is
   // balanced for those held weights; empty otherwise.
   std::vector<double> weight_holds;
+  // Newton's full steps reached a balanced map of degree 1 with non-positive faces (not only tips below double
+  // precision, which tip_regularization.h resolves): the weights' balanced map found is not bijective.
+  bool balanced_map_folded = false;
 };
 
 // The time budget, checked between iterations and, inside the long ones, between their parts.

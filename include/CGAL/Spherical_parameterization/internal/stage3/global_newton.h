@@ -317,6 +317,7 @@ inline Iteration_report newton_through_folds(Sphere_state& state, const Iteratio
         }
       }
     }
+    report.balanced_map_folded = !report.converged;
   }
   if(statistics != nullptr)
     *statistics = std::move(counts);
@@ -332,7 +333,8 @@ inline Iteration_report full_newton_steps(Sphere_state& state, const Iteration_o
 {
   const std::vector<Vector3> start = state.positions();
   Iteration_report report = newton_through_folds(state, options, clock, nullptr, Step_merit::RESIDUAL, boost_aim);
-  if(report.converged || report.cancelled || report.out_of_time)
+  if(report.converged || report.cancelled || report.out_of_time
+     || (report.balanced_map_folded && options.least_distortion_follows))
     return report;
   state.assign(start);
   const Iteration_report first = report;
@@ -391,7 +393,8 @@ inline Iteration_report global_newton(Sphere_state& state, const Iteration_optio
   // Full Newton steps through folds first: on most meshes the fastest way to the balanced map.
   Mobius_newton_statistics statistics;
   Iteration_report free_steps = newton_through_folds(state, options, clock, &statistics);
-  if(free_steps.converged || free_steps.cancelled || free_steps.out_of_time)
+  if(free_steps.converged || free_steps.cancelled || free_steps.out_of_time
+     || (free_steps.balanced_map_folded && options.least_distortion_follows))
     return free_steps;
   // Otherwise from where it started (restored: its best iterate has the fewest non-positive faces), with every step
   // keeping every positive triangle positive.
