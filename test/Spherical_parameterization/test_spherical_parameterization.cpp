@@ -1423,6 +1423,39 @@ TEST(LeastDistortion, SmoothingStopsWhenItStalls)
   EXPECT_LE(smoothed, one_sweep);
 }
 
+// The time budget of the minimization: a first step expected to end past the budget (first_pass_seconds, from a
+// coarser level) is not started; without that expectation the same call takes its steps.
+TEST(LeastDistortion, FirstStepKeepsTheBudget)
+{
+  Mesh mesh;
+  CGAL::make_icosahedron(mesh, Point(0, 0, 0), 1.);
+  CGAL::Subdivision_method_3::Loop_subdivision(mesh, CGAL::parameters::number_of_iterations(2));
+  const SPI::Mesh_arrays arrays = arrays_of(mesh);
+  std::vector<SPI::Vector3> start = arrays.points;
+  std::mt19937 random(5);
+  std::uniform_real_distribution<double> noise(-0.02, 0.02);
+  for(SPI::Vector3& p : start)
+  {
+    p = SPI::Vector3(p.x + noise(random), p.y + noise(random), p.z + noise(random));
+    p = (1. / std::sqrt(SPI::dot(p, p))) * p;
+  }
+  SPI::Iteration_options options;
+  options.max_seconds = 600.;
+  CGAL::Real_timer clock;
+  clock.start();
+  std::vector<SPI::Vector3> x = start;
+  const SPI::Least_distortion_report refused =
+      SPI::minimize_conformal_distortion(arrays.triangles, arrays.points, x, options, clock, 1000.);
+  EXPECT_TRUE(refused.started);
+  EXPECT_TRUE(refused.out_of_time);
+  EXPECT_EQ(refused.newton_steps, 0u);
+  const SPI::Least_distortion_report taken =
+      SPI::minimize_conformal_distortion(arrays.triangles, arrays.points, x, options, clock, 0.);
+  EXPECT_FALSE(taken.out_of_time);
+  EXPECT_GT(taken.newton_steps, 0u);
+  EXPECT_TRUE(taken.stationary);
+}
+
 TEST(LeastDistortion, MinimizesFromAPerturbedMap)
 {
   Mesh mesh;

@@ -107,10 +107,12 @@ struct Result
   /// unless `hold_weights` was given too). Then the convergence test is the stationarity of that
   /// minimum: `max_distortion_stationarity` at most the tolerance (or its rounding floor) at every vertex.
   bool least_distortion_map = false;
-  /// With the named parameter `least_distortion`: Newton's full steps reached a map balanced for the weights given
-  /// (cotangent) that has non-positive faces, so the other ways to a balanced map were skipped and the minimization
-  /// followed at once (the manual's Method section: such a map is where those weights lead; the other ways rarely
-  /// find another one, and take most of the time). False otherwise.
+  /// With the named parameter `least_distortion` (and without `hold_weights`): Newton's full steps reached a map
+  /// balanced for the weights given (symmetric weights other than Tutte's: cotangent, admissible, the user's) that has
+  /// non-positive faces beyond arm tips below double precision, so the other ways to a balanced map were skipped and
+  /// the minimization followed at once (the manual's Method section: such a map is where those weights lead; the
+  /// other ways rarely find another one, and take most of the time). It can be true while `least_distortion_map` is
+  /// false (the minimization was cancelled, ran out of time, or did not lower the distortion). False otherwise.
   bool balanced_map_folded = false;
   /// The conformal distortion of the map returned when `least_distortion_map`: the mean, weighted by 3D area, of
   /// \f$(\sigma_1^2 + \sigma_2^2) / (2 \sigma_1 \sigma_2)\f$ over the affine maps from each 3D triangle to the flat

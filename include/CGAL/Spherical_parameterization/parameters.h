@@ -161,7 +161,8 @@ CGAL_SPHERICAL_PARAMETERIZATION_NAMED_PARAMETER(hold_weights)
 /// the 3D triangles, started from the map reached or, of less distortion, a map minimized on coarser levels first
 /// (meshes of 4,000 vertices or more) or Tutte's map. With weights other than Tutte's and without `hold_weights`, this
 /// minimization replaces their last resort (the cautious Newton). With weights other than Tutte's and `max_seconds`,
-/// the ways to the weights' balanced map get half the budget, the minimization the rest.
+/// the ways to the weights' balanced map get half the budget, the minimization the rest; where Newton's full steps
+/// reach a balanced map of those weights that is folded, the other ways are skipped (`Result::balanced_map_folded`).
 /// `Result::least_distortion_map` says so, and the status is `Error_code::OK` when that minimum is stationary
 /// (`Result::max_distortion_stationarity`) and the map certified. Only with `Convergence_test::IMBALANCE`.
 /// Default `false`. An experimental option: see the manual's Method section for what it gives and costs.

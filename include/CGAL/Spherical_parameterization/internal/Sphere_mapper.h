@@ -388,8 +388,14 @@ private:
     m_newton = m_system.symmetric ? full_newton_steps(state, level_options, iterations_clock, Boost_aim::ROOT)
                                   : least_squares_newton(state, level_options, iterations_clock);
     // With least_distortion, a folded balanced map ends the ways to the balanced map (Iteration_options::
-    // least_distortion_follows): the map stays as the full steps left it, the minimization starts elsewhere.
+    // least_distortion_follows); the map carried back stays where it was bijective (the map returned if the
+    // minimization cannot run).
     m_balanced_map_folded = m_newton.balanced_map_folded && level_options.least_distortion_follows;
+    if(m_balanced_map_folded && smoothed_map_positive)
+    {
+      state.assign(smoothed_map);
+      m_newton.residual = smoothed.residual;
+    }
     if(m_system.symmetric && !m_newton.converged && !m_newton.cancelled && !m_newton.out_of_time
        && smoothed_map_positive && !m_balanced_map_folded)
     {
@@ -585,6 +591,7 @@ private:
         m_iteration_options.max_newton_sweeps = 0;
     }
     const double direct_seconds = direct_clock.time();
+    // The folded map is not kept: the state went back to the initial guess, which the minimization may start from.
     m_balanced_map_folded = direct_newton.balanced_map_folded && m_iteration_options.least_distortion_follows;
     const bool direct_done = direct_newton.converged || direct_newton.out_of_time || m_balanced_map_folded;
 
@@ -619,7 +626,9 @@ private:
       hold_weights(x, m_newton.weight_holds);
     m_result.newton.iterations = m_newton.sweeps + direct_newton.sweeps;
     m_result.newton.linear_iterations = m_newton.linear_iterations + direct_newton.linear_iterations;
-    m_result.newton.residual = direct_done ? direct_newton.residual : m_newton.residual;
+    m_result.newton.residual = m_balanced_map_folded && !direct_newton.converged ? gauss_seidel.residual
+                               : direct_done                                  ? direct_newton.residual
+                                                                              : m_newton.residual;
     m_result.newton.seconds = stage.time() + direct_seconds;
     m_result.rejected_moves = gauss_seidel.rejected_moves + m_newton.rejected_moves;
     m_result.continuation_parameter = m_newton.continuation_parameter;
@@ -739,12 +748,10 @@ private:
       if(from_other < reached)
         y.swap(other);
     }
-    // The first step on the mesh is expected to take the last coarser level's, scaled by the vertices (its
+    // The first step on the mesh is expected to take the last coarser level's, scaled (scaled_step_seconds: its
     // factorization cannot be interrupted); a coarser level stopped by the budget leaves no time for it.
-    double first_step_seconds = 0.;
-    if(!levels.levels.empty() && levels.levels.back().vertices > 0)
-      first_step_seconds = levels.levels.back().last_step_seconds * static_cast<double>(m_system.number_of_vertices)
-                           / static_cast<double>(levels.levels.back().vertices);
+    const double first_step_seconds =
+        levels.levels.empty() ? 0. : scaled_step_seconds(levels.levels.back(), m_system.number_of_vertices);
     Least_distortion_report report; // the time budget counts from `clock`'s start, Tutte's map included
     if(!m_cancelled && !levels.out_of_time && !past_time_budget(options, clock))
       report = minimize_conformal_distortion(m_system.triangles, m_mesh.points, y, options, clock, first_step_seconds);

@@ -716,8 +716,8 @@ inline Least_distortion_report minimize_conformal_distortion(const std::vector<s
         decrease = -change;
         if(judged_by_rounding && !(change <= 1e-4 * t * slope))
           noise_step_stationarity = report.max_stationarity;
-        else
-          noise_step_stationarity = std::numeric_limits<double>::infinity(); // F went down: no cycle to guard
+        else if(-change > noise)
+          noise_step_stationarity = std::numeric_limits<double>::infinity(); // F went down beyond its rounding
         break;
       }
     }

@@ -42,6 +42,17 @@ struct Least_distortion_level
   double last_step_seconds = 0.; // its last step's duration (Least_distortion_report::last_step_seconds)
 };
 
+// What a step on a level of `vertices` is expected to take from the last step of the coarser `level`: a sparse
+// factorization of a surface's Hessian grows about as the vertices to the power 1.5 (nested dissection's operation
+// count on planar graphs, George 1973), used by the time budget (minimize_conformal_distortion's first_pass_seconds).
+inline double scaled_step_seconds(const Least_distortion_level& level, std::size_t vertices)
+{
+  if(level.vertices == 0)
+    return 0.;
+  return level.last_step_seconds
+         * std::pow(static_cast<double>(vertices) / static_cast<double>(level.vertices), 1.5);
+}
+
 struct Multilevel_least_distortion_report
 {
   bool cancelled = false;
@@ -94,8 +105,10 @@ bool multilevel_least_distortion_start(const std::vector<Vector3>& points,
   for(std::size_t level = hierarchy.size(); level > 0; --level)
   {
     const double start_time = clock.time();
-    const Least_distortion_report report =
-        minimize_conformal_distortion(level_triangles(level), level_points(level), y, level_options, clock);
+    const double first_step_seconds =
+        multilevel.levels.empty() ? 0. : scaled_step_seconds(multilevel.levels.back(), y.size());
+    const Least_distortion_report report = minimize_conformal_distortion(level_triangles(level), level_points(level), y,
+                                                                         level_options, clock, first_step_seconds);
     if(!report.started)
       return false;
     if(report.cancelled || report.out_of_time)
