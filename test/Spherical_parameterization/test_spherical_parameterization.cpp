@@ -1533,6 +1533,20 @@ TEST(SphericalParameterize, LeastDistortion)
     EXPECT_TRUE(result.balanced_map_folded);
   }
   {
+    // The same on the two-disk path (8 vertices, below the multilevel start): the full steps from the two disks fold,
+    // stages 2 and 3 are skipped, and the figures of the map before the minimization are those of the two disks.
+    const SP::Result plain = run("fandisk-box.off", SP::Weighting::COTANGENT, false, &without);
+    EXPECT_EQ(plain.status, SP::Error_code::OK) << plain.message; // a bijective balanced map, found by a later way
+    EXPECT_FALSE(plain.balanced_map_folded);
+    const SP::Result result = run("fandisk-box.off", SP::Weighting::COTANGENT, true, &with);
+    EXPECT_EQ(result.status, SP::Error_code::OK) << result.message;
+    EXPECT_TRUE(result.least_distortion_map);
+    EXPECT_TRUE(result.balanced_map_folded);
+    EXPECT_EQ(result.gauss_seidel.iterations, 0u);
+    EXPECT_EQ(result.newton.residual, result.initial_guess.residual);
+    EXPECT_LT(with, without); // 6.0 degrees against 48.4 for the balanced map
+  }
+  {
     const SP::Result result = run("u.off", SP::Weighting::MEAN_VALUE, true, &with);
     EXPECT_EQ(result.status, SP::Error_code::OK) << result.message;
     EXPECT_TRUE(result.least_distortion_map);
