@@ -1547,6 +1547,41 @@ TEST(SphericalParameterize, LeastDistortion)
     EXPECT_LT(with, without); // 6.0 degrees against 48.4 for the balanced map
   }
   {
+    // With hold_weights the rule is off: the user asked for the held continuation's balanced map, which the later
+    // ways find here (the same map as without least_distortion).
+    Mesh mesh = read_mesh(cgal_data + "/fandisk-box.off");
+    auto sphere = mesh.add_property_map<Mesh::Vertex_index, Point>("v:sphere", Point(0, 0, 0)).first;
+    const SP::Result result = SP::spherical_parameterize(
+        mesh, sphere,
+        SP::parameters::combine(SP::parameters::weighting(SP::Weighting::COTANGENT),
+                                SP::parameters::least_distortion(true), SP::parameters::hold_weights(true),
+                                SP::parameters::max_seconds(60.)));
+    EXPECT_EQ(result.status, SP::Error_code::OK) << result.message;
+    EXPECT_FALSE(result.balanced_map_folded);
+    EXPECT_FALSE(result.least_distortion_map);
+    EXPECT_LE(result.max_imbalance, 1e-6);
+    EXPECT_TRUE(exact_certificate(mesh, sphere).bijective());
+  }
+  {
+    // A cancel during the minimization that follows the fold: status CANCELLED, the flag still reported (the fold
+    // was reached), and the iterate written is bijective (the minimization keeps every triangle positive).
+    Mesh mesh = read_mesh(cgal_data + "/triceratops.off");
+    auto sphere = mesh.add_property_map<Mesh::Vertex_index, Point>("v:sphere", Point(0, 0, 0)).first;
+    std::size_t minimization_reports = 0;
+    auto cancel_in_minimization = [&](const SP::Progress& progress) {
+      return std::string(progress.stage) != "least distortion" || ++minimization_reports < 3;
+    };
+    const SP::Result result = SP::spherical_parameterize(
+        mesh, sphere,
+        SP::parameters::combine(SP::parameters::weighting(SP::Weighting::COTANGENT),
+                                SP::parameters::least_distortion(true), SP::parameters::max_seconds(60.),
+                                SP::parameters::progress_callback(cancel_in_minimization)));
+    EXPECT_EQ(result.status, SP::Error_code::CANCELLED) << result.message;
+    EXPECT_EQ(minimization_reports, 3u);
+    EXPECT_TRUE(result.balanced_map_folded);
+    EXPECT_TRUE(exact_certificate(mesh, sphere).bijective());
+  }
+  {
     const SP::Result result = run("u.off", SP::Weighting::MEAN_VALUE, true, &with);
     EXPECT_EQ(result.status, SP::Error_code::OK) << result.message;
     EXPECT_TRUE(result.least_distortion_map);
