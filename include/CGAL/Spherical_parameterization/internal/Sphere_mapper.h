@@ -233,7 +233,7 @@ private:
   // Only for the mesh given: a coarser level from that size on has gone multilevel first (multilevel_applies).
   // Non-symmetric weights (mean value) never go multilevel first, and take this fallback from 200 vertices on, with
   // no upper limit: their least-squares iterations from the balanced map of Tutte's weights, carried back from the
-  // levels, find a stationary map on triceratops (11.1 degrees, 11 s in all) and oblong, where those from the
+  // levels, find a stationary map on triceratops (11.1 degrees, 11 s in all; 13.3 in 8 s since 2026-11-28) and oblong, where those from the
   // two-disk guess stalled. First they lost more than they won: 47 of the 66 meshes stationary instead of 49 (bear,
   // from Tutte's map, ends at another minimum of the least-squares problem, 6.6 degrees instead of 3.6, not
   // stationary in 30 s; likewise diplodocus, brainspace_conte69_32k and oded_hammer).

@@ -19,7 +19,7 @@
 // - plain Gauss-Newton steps d = -J^+ r (rotations left out), from one sparse LU of J (gauss_newton_step()) or, from
 //   Solver_tuning::least_squares_krylov_vertices on, by GMRES with the weights' multigrid
 //   (krylov_gauss_newton_step(), with the LU as its fallback);
-// - Marquardt's steps (J^T J + B + lambda diag(J^T J)) d = -grad Phi where those crawl or do not descend (step());
+// - Marquardt's steps (J^T J + B + lambda diag(J^T J + B)) d = -grad Phi where those crawl or do not descend (step());
 // - where the triangles stop the steps, the minimum subject to det(x_a, x_b, x_c) > 0 through
 //   Phi_mu(x) = Psi(x) - mu sum_f c_f log det_f, with B = mu sum_f c_f b_f b_f^T / det_f^2 the barrier's positive
 //   part and c_f set per phase as in constrained_balance.h.
@@ -181,8 +181,8 @@ public:
   // into that factorization). J is square; its null space N is the rotations, and its range misses a
   // 3-dimensional left null space L (the three equations too many). With J_e = J + E (E tiny: regular), inverse
   // iteration on J_e^T from the rotation fields gives a basis of L (amplified against the rest); then
-  // J_e d = -(r - P_L r), and d without its rotation part, is the least-squares step. E is 1e-10 of each diagonal
-  // entry, not of the largest: the rows carry 1/l_i, so where spherical edges span 1e-9 to 0.4 the largest entry is
+  // J_e d = -(r - P_L r), and d without its rotation part, is the least-squares step. E adds 1e-10 |J_kk| to each
+  // diagonal entry (1e-10 of the largest where J_kk = 0), not 1e-10 of the largest everywhere: the rows carry 1/l_i, so where spherical edges span 1e-9 to 0.4 the largest entry is
   // the shortest edges', and 1e-10 of it distorted the steps of the map's sparse part (with Marquardt's shift below,
   // the same change: 56 of the 66 test meshes stationary within 30 s instead of 51).
   bool gauss_newton_step(const std::vector<Vector3>& x, std::vector<Vector3>& d)
@@ -507,8 +507,9 @@ public:
           }
       }
     }
-    // Besides lambda, a shift of 1e-12 of each diagonal entry itself (J^T J is singular along the rotations), and of
-    // the mean diagonal only where an entry is 0. Not 1e-12 of the mean everywhere: where spherical edges span 1e-9
+    // Besides lambda (at least 1e-12), a shift of 1e-12 of each diagonal entry itself, and of the mean diagonal only
+    // where an entry is 0: J^T J is singular along the rotations (the step's rotation part is harmless: Psi is
+    // invariant under rotations, and the line search judges the step). Not 1e-12 of the mean everywhere: where spherical edges span 1e-9
     // to 0.4 (CGAL's cow with mean-value weights), the entries span some 20 orders of magnitude, the mean is the
     // shortest edges', and that shift outweighed the curvature of the map's sparse part, whose steps then shrank to a
     // crawl (the worst stationarity from 8e-4 to 3.6e-4 in 400 steps; stationary in 102 steps with this shift).
@@ -558,7 +559,7 @@ private:
   std::vector<std::array<std::size_t, 4>> m_diagonal_slots, m_block_slots;
   Eigen::VectorXd m_residual, m_gradient;
   double m_slope = 0.;
-  Sparse_ldlt m_ldlt; // J^T J + B + lambda diag(J^T J), Marquardt's steps
+  Sparse_ldlt m_ldlt; // J^T J + B + lambda diag(J^T J + B), Marquardt's steps
   Sparse_lu m_lu;     // J, the plain Gauss-Newton steps
   // The plain steps by GMRES (krylov_gauss_newton_step()).
   Tangent_laplacian_preconditioner m_multigrid;
