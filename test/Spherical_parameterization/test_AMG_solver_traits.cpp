@@ -11,6 +11,7 @@
 
 #include <CGAL/Spherical_parameterization/AMG_solver_traits.h>
 #include <CGAL/Spherical_parameterization/independent_copy.h>
+#include <CGAL/Spherical_parameterization/internal/AMG/Krylov_solvers.h>
 
 #include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
 #include <CGAL/Surface_mesh.h>
@@ -23,6 +24,7 @@
 #include <Eigen/SparseLU>
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <limits>
@@ -315,6 +317,53 @@ TEST(Poisson_grid, IterationCountsAreBoundedAndDoNotGrowWithSize)
   EXPECT_LE(iterations_10k, 15);
   EXPECT_LE(iterations_100k, 15);
   EXPECT_LE(iterations_100k, iterations_10k + 3);
+}
+
+// GMRES's stop(): asked after every iteration, it ends the solve there with the iterate reached (a time budget
+// inside one Krylov solve: stage 3's least-squares steps on brain cortices ran 600 iterations, 20 s, in one step).
+TEST(Gmres_stop, EndsTheSolveWhereAsked)
+{
+  namespace AMG = CGAL::Spherical_parameterization::internal::AMG;
+  // A non-symmetric tridiagonal system (convection-diffusion on a line), matrix-free, no preconditioner.
+  const AMG::Index n = 400;
+  auto apply = [n](const double* in, double* out) {
+    for(AMG::Index i = 0; i < n; ++i)
+      out[i] = 2.5 * in[i] - (i > 0 ? 1.4 * in[i - 1] : 0.) - (i + 1 < n ? 0.6 * in[i + 1] : 0.);
+  };
+  std::vector<double> product(static_cast<std::size_t>(n));
+  auto residual = [&](const double* x, const double* b, double* r) {
+    apply(x, product.data());
+    for(AMG::Index i = 0; i < n; ++i)
+      r[i] = b[i] - product[static_cast<std::size_t>(i)];
+  };
+  auto identity = [n](const double* in, double* out) { std::copy(in, in + n, out); };
+  const std::vector<double> b(static_cast<std::size_t>(n), 1.);
+  const double b_norm = std::sqrt(double(n));
+  AMG::Krylov_workspace workspace;
+
+  std::vector<double> x(static_cast<std::size_t>(n), 0.);
+  const AMG::Krylov_result free_run =
+      AMG::gmres(apply, residual, n, b.data(), x.data(), identity, 1e-10 * b_norm, b_norm, 1000, 30, workspace);
+  EXPECT_TRUE(free_run.converged);
+  EXPECT_FALSE(free_run.stopped);
+  ASSERT_GT(free_run.iterations, 7);
+
+  int asked = 0;
+  std::fill(x.begin(), x.end(), 0.);
+  const AMG::Krylov_result stopped = AMG::gmres(apply, residual, n, b.data(), x.data(), identity, 1e-10 * b_norm,
+                                                b_norm, 1000, 30, workspace, [&]() { return ++asked >= 7; });
+  EXPECT_TRUE(stopped.stopped);
+  EXPECT_FALSE(stopped.converged);
+  EXPECT_EQ(stopped.iterations, 7);
+  EXPECT_EQ(asked, 7);
+  // The iterate reached is kept: its residual is below the start's (x = 0, relative residual 1).
+  std::vector<double> r(static_cast<std::size_t>(n));
+  residual(x.data(), b.data(), r.data());
+  double r_norm = 0.;
+  for(double value : r)
+    r_norm += value * value;
+  EXPECT_LT(std::sqrt(r_norm), 0.9 * b_norm);
+  EXPECT_NEAR(stopped.relative_residual, std::sqrt(r_norm) / b_norm, 1e-12);
 }
 
 // An open disk: the closed mesh minus the faces around its first vertex, built by hand.

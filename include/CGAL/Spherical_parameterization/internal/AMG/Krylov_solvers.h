@@ -17,6 +17,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <functional>
 #include <vector>
 
 namespace CGAL {
@@ -27,6 +28,7 @@ namespace AMG {
 struct Krylov_result
 {
   bool converged = false;
+  bool stopped = false; // the caller's stop() asked to end (a time budget); x is the iterate reached
   int iterations = 0;
   double relative_residual = 0.;
 };
@@ -209,11 +211,13 @@ Krylov_result bicgstab(const Compressed_row_matrix& A, const double* b, double* 
 // Restarted GMRES(m) with right preconditioning and Givens rotations; one preconditioner application per
 // iteration plus one per restart (x += M^{-1} V y). Matrix-free: apply_operator(in, out) is out = A in and
 // compute_residual(x, b, r) is r = b - A x, on arrays of n values (stage 3's Jacobians are not stored as
-// Compressed_row_matrix).
+// Compressed_row_matrix). `stop`, when given, is asked after every iteration: true ends the solve with the iterate
+// reached (Krylov_result::stopped), so that a solve of hundreds of iterations keeps a time budget.
 template <class Operator, class Residual, class Preconditioner>
 Krylov_result gmres(Operator& apply_operator, Residual& compute_residual, Index n, const double* b, double* x,
                     Preconditioner& apply_preconditioner, double target_residual_norm, double reference_norm,
-                    int max_iterations, int restart_length, Krylov_workspace& workspace)
+                    int max_iterations, int restart_length, Krylov_workspace& workspace,
+                    const std::function<bool()>& stop = {})
 {
   const int m = std::max(restart_length, 1);
   double* r = workspace.vector(0, n);
@@ -230,7 +234,7 @@ Krylov_result gmres(Operator& apply_operator, Residual& compute_residual, Index 
     if(!std::isfinite(residual_norm))
       return result;
     result.converged = residual_norm <= target_residual_norm;
-    if(result.converged || result.iterations >= max_iterations)
+    if(result.converged || result.iterations >= max_iterations || result.stopped)
       return result;
 
     double* v0 = workspace.vector(2, n);
@@ -277,6 +281,11 @@ Krylov_result gmres(Operator& apply_operator, Residual& compute_residual, Index 
       ++result.iterations;
       if(std::abs(g[k]) <= target_residual_norm)
         break;
+      if(stop && stop())
+      {
+        result.stopped = true;
+        break;
+      }
     }
     // y = H^{-1} g, then x += M^{-1} (V y)
     for(int i = k - 1; i >= 0; --i)

@@ -46,6 +46,7 @@
 #include <array>
 #include <cmath>
 #include <cstddef>
+#include <functional>
 #include <vector>
 
 namespace CGAL {
@@ -182,9 +183,10 @@ public:
   // 3-dimensional left null space L (the three equations too many). With J_e = J + E (E tiny: regular), inverse
   // iteration on J_e^T from the rotation fields gives a basis of L (amplified against the rest); then
   // J_e d = -(r - P_L r), and d without its rotation part, is the least-squares step. E adds 1e-10 |J_kk| to each
-  // diagonal entry (1e-10 of the largest where J_kk = 0), not 1e-10 of the largest everywhere: the rows carry 1/l_i, so where spherical edges span 1e-9 to 0.4 the largest entry is
-  // the shortest edges', and 1e-10 of it distorted the steps of the map's sparse part (with Marquardt's shift below,
-  // the same change: 56 of the 66 test meshes stationary within 30 s instead of 51).
+  // diagonal entry (1e-10 of the largest where J_kk = 0), not 1e-10 of the largest everywhere: the rows carry 1/l_i,
+  // so where spherical edges span 1e-9 to 0.4 the largest entry is the shortest edges', and 1e-10 of it distorted
+  // the steps of the map's sparse part (with Marquardt's shift below, the same change: 56 of the 66 test meshes
+  // stationary within 30 s instead of 51).
   bool gauss_newton_step(const std::vector<Vector3>& x, std::vector<Vector3>& d)
   {
     const std::size_t n = m_system.number_of_vertices;
@@ -261,8 +263,12 @@ public:
   // projection: the step is then a descent direction for the inexact solve too, its error lying in L's complement),
   // d orthogonal to N, is the nonsingular system
   //   (P_L^ J^ P_N + Q N^T) d = -S (r - P_L r),   Q an orthonormal basis of L^.
-  bool krylov_gauss_newton_step(const std::vector<Vector3>& x, std::vector<Vector3>& d, const Solver_tuning& tuning)
+  // `stop` (a time budget) is asked after every GMRES iteration; when it ends a solve, the step fails and
+  // stopped() is true.
+  bool krylov_gauss_newton_step(const std::vector<Vector3>& x, std::vector<Vector3>& d, const Solver_tuning& tuning,
+                                const std::function<bool()>& stop = {})
   {
+    m_stopped = false;
     const double left_tolerance = tuning.krylov_left_tolerance;
     const int max_iterations = tuning.krylov_max_iterations;
     const int restart_length = tuning.krylov_restart;
@@ -357,8 +363,13 @@ public:
       };
       const AMG::Krylov_result result =
           AMG::gmres(apply, residual, AMG::Index(m), rhs.data(), solution.data(), precondition, tolerance * rhs_norm,
-                     rhs_norm, max_iterations, restart_length, m_workspace);
+                     rhs_norm, max_iterations, restart_length, m_workspace, stop);
       m_krylov_iterations += result.iterations;
+      if(result.stopped)
+      {
+        m_stopped = true;
+        return false;
+      }
       // Not converged in max_iterations but well reduced: still a useful step (the line search judges it).
       return std::isfinite(result.relative_residual) && result.relative_residual <= std::max(tolerance, 0.5);
     };
@@ -470,6 +481,7 @@ public:
   }
 
   int krylov_iterations() const { return m_krylov_iterations; }
+  bool stopped() const { return m_stopped; }
   int left_iterations() const { return m_left_iterations; }
   double forcing() const { return m_forcing; }
 
@@ -509,10 +521,11 @@ public:
     }
     // Besides lambda (at least 1e-12), a shift of 1e-12 of each diagonal entry itself, and of the mean diagonal only
     // where an entry is 0: J^T J is singular along the rotations (the step's rotation part is harmless: Psi is
-    // invariant under rotations, and the line search judges the step). Not 1e-12 of the mean everywhere: where spherical edges span 1e-9
-    // to 0.4 (CGAL's cow with mean-value weights), the entries span some 20 orders of magnitude, the mean is the
-    // shortest edges', and that shift outweighed the curvature of the map's sparse part, whose steps then shrank to a
-    // crawl (the worst stationarity from 8e-4 to 3.6e-4 in 400 steps; stationary in 102 steps with this shift).
+    // invariant under rotations, and the line search judges the step). Not 1e-12 of the mean everywhere: where
+    // spherical edges span 1e-9 to 0.4 (CGAL's cow with mean-value weights), the entries span some 20 orders of
+    // magnitude, the mean is the shortest edges', and that shift outweighed the curvature of the map's sparse part,
+    // whose steps then shrank to a crawl (the worst stationarity from 8e-4 to 3.6e-4 in 400 steps; stationary in 102
+    // steps with this shift).
     double mean_diagonal = 0.;
     for(Eigen::Index k = 0; k < normal.rows(); ++k)
       mean_diagonal += normal.coeff(k, k);
@@ -571,6 +584,7 @@ private:
   std::vector<double> m_stationarity_scale;
   AMG::Krylov_workspace m_workspace;
   int m_krylov_iterations = 0, m_left_iterations = 0;
+  bool m_stopped = false;
   double m_forcing = 0., m_previous_reducible = 0.;
 };
 
@@ -622,20 +636,20 @@ inline Least_squares_report imbalance_least_squares(Sphere_state& state, const I
     phi = problem.evaluate(x, mu);
     return true;
   };
-  double last_step_seconds = 0.;
+  // The duration of the last attempt of each kind, which predicts the next one's: a plain step by GMRES can take a
+  // fraction of a second where Marquardt's factorization of J^T J takes seconds (brain cortices), and up to
+  // marquardt_attempts of them follow each other within one step (vol2surf_lh_pial ended 45 s into a budget of 30 s
+  // when only whole steps were checked).
+  double last_plain_seconds = 0., last_marquardt_seconds = 0.;
   bool plain_steps_allowed = true;
   std::vector<double> stationarity_history;
   for(;;)
   {
-    // A step is one sparse LU that cannot be interrupted (seconds on brain cortices): none is started that the
-    // previous one's duration says would end past the budget.
-    if(past_time_budget(options, clock)
-       || next_part_passes_time_budget(options, clock, last_step_seconds))
+    if(past_time_budget(options, clock))
     {
       report.out_of_time = true;
       break;
     }
-    const double step_start = clock.time();
     if(options.cancel_requested())
     {
       report.cancelled = true;
@@ -672,17 +686,33 @@ inline Least_squares_report imbalance_least_squares(Sphere_state& state, const I
     {
       // Without the barrier, the plain Gauss-Newton step first; Marquardt's steps when it does not lower Phi.
       const bool plain = attempt == 0 && mu == 0. && plain_steps_allowed;
+      // Each attempt is a factorization or a Krylov solve that cannot be interrupted: none is started that the
+      // last one of its kind says would end past the budget.
+      if(past_time_budget(options, clock)
+         || next_part_passes_time_budget(options, clock, plain ? last_plain_seconds : last_marquardt_seconds))
+      {
+        report.out_of_time = true;
+        break;
+      }
+      const double attempt_start = clock.time();
       // The plain step by GMRES on large meshes, the sparse LU where GMRES fails.
       auto plain_step = [&]() {
         if(use_krylov)
         {
-          if(problem.krylov_gauss_newton_step(x, d, tuning))
+          if(problem.krylov_gauss_newton_step(x, d, tuning, [&]() { return past_time_budget(options, clock); }))
             return true;
+          if(problem.stopped())
+            return false; // out of time: no factorization after it
         }
         return problem.gauss_newton_step(x, d);
       };
+      // The attempt's duration, however it ends.
+      auto record_duration = [&]() {
+        (plain ? last_plain_seconds : last_marquardt_seconds) = clock.time() - attempt_start;
+      };
       if(plain ? !plain_step() : !problem.step(x, mu, lambda, d))
       {
+        record_duration();
         lambda = std::min(lambda * 10., tuning.marquardt_max);
         continue;
       }
@@ -702,6 +732,7 @@ inline Least_squares_report imbalance_least_squares(Sphere_state& state, const I
             trial_phi = problem.evaluate(trial, mu);
             return trial_phi <= phi + 1e-4 * s * slope; // Armijo's sufficient decrease
           });
+      record_duration();
       if(t > 0.)
       {
         state.assign(trial, true);
@@ -716,7 +747,8 @@ inline Least_squares_report imbalance_least_squares(Sphere_state& state, const I
         lambda = std::min(lambda * 10., tuning.marquardt_max);
       }
     }
-    last_step_seconds = clock.time() - step_start;
+    if(report.out_of_time)
+      break;
     // One report per step, as the other stage-3 solvers send (their Iteration_driver): the progress line, and the
     // user's callback, whose false cancels.
     if(options.progress && !options.progress("global newton", report.steps, compute_residuals(system, x).paper, 0))
