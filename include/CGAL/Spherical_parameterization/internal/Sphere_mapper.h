@@ -595,7 +595,7 @@ private:
     m_balanced_map_folded = direct_newton.balanced_map_folded && m_iteration_options.least_distortion_follows;
     const bool direct_done = direct_newton.converged || direct_newton.out_of_time || m_balanced_map_folded;
     // The report the multilevel fallback reads: out of time on this path is out of time for it too (it started with
-    // seconds left and overran the budget by 15 s on vol2surf_lh_pial, mean-value weights).
+    // 5 s left and ran 17 s on vol2surf_lh_pial, mean-value weights).
     if(direct_newton.out_of_time)
       m_newton.out_of_time = true;
 

@@ -365,7 +365,7 @@ public:
           AMG::gmres(apply, residual, AMG::Index(m), rhs.data(), solution.data(), precondition, tolerance * rhs_norm,
                      rhs_norm, max_iterations, restart_length, m_workspace, stop);
       m_krylov_iterations += result.iterations;
-      if(result.stopped)
+      if(result.stopped && !result.converged)
       {
         m_stopped = true;
         return false;
@@ -638,8 +638,8 @@ inline Least_squares_report imbalance_least_squares(Sphere_state& state, const I
   };
   // The duration of the last attempt of each kind, which predicts the next one's: a plain step by GMRES can take a
   // fraction of a second where Marquardt's factorization of J^T J takes seconds (brain cortices), and up to
-  // marquardt_attempts of them follow each other within one step (vol2surf_lh_pial ended 45 s into a budget of 30 s
-  // when only whole steps were checked).
+  // marquardt_attempts of them follow each other within one step. (GMRES itself stops on the budget: one step's
+  // solves on vol2surf_lh_pial took 645 iterations, 20 s.)
   double last_plain_seconds = 0., last_marquardt_seconds = 0.;
   bool plain_steps_allowed = true;
   std::vector<double> stationarity_history;
@@ -706,11 +706,17 @@ inline Least_squares_report imbalance_least_squares(Sphere_state& state, const I
         }
         return problem.gauss_newton_step(x, d);
       };
+      const bool stepped = plain ? plain_step() : problem.step(x, mu, lambda, d);
+      if(plain && problem.stopped())
+      {
+        report.out_of_time = true;
+        break;
+      }
       // The attempt's duration, however it ends.
       auto record_duration = [&]() {
         (plain ? last_plain_seconds : last_marquardt_seconds) = clock.time() - attempt_start;
       };
-      if(plain ? !plain_step() : !problem.step(x, mu, lambda, d))
+      if(!stepped)
       {
         record_duration();
         lambda = std::min(lambda * 10., tuning.marquardt_max);
