@@ -686,10 +686,9 @@ inline Least_squares_report imbalance_least_squares(Sphere_state& state, const I
     {
       // Without the barrier, the plain Gauss-Newton step first; Marquardt's steps when it does not lower Phi.
       const bool plain = attempt == 0 && mu == 0. && plain_steps_allowed;
-      // Each attempt is a factorization or a Krylov solve that cannot be interrupted: none is started that the
-      // last one of its kind says would end past the budget.
-      if(past_time_budget(options, clock)
-         || next_part_passes_time_budget(options, clock, plain ? last_plain_seconds : last_marquardt_seconds))
+      // A factorization cannot be interrupted: no attempt is started that the last one of its kind says would end
+      // past the budget (this also holds once the budget is spent).
+      if(next_part_passes_time_budget(options, clock, plain ? last_plain_seconds : last_marquardt_seconds))
       {
         report.out_of_time = true;
         break;
