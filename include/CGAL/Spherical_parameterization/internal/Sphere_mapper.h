@@ -233,10 +233,11 @@ private:
   // Only for the mesh given: a coarser level from that size on has gone multilevel first (multilevel_applies).
   // Non-symmetric weights (mean value) never go multilevel first, and take this fallback from 200 vertices on, with
   // no upper limit: their least-squares iterations from the balanced map of Tutte's weights, carried back from the
-  // levels, find a stationary map on triceratops (11.1 degrees, 11 s in all; 13.3 in 8 s since 2026-11-28) and oblong, where those from the
-  // two-disk guess stalled. First they lost more than they won: 47 of the 66 meshes stationary instead of 49 (bear,
-  // from Tutte's map, ends at another minimum of the least-squares problem, 6.6 degrees instead of 3.6, not
-  // stationary in 30 s; likewise diplodocus, brainspace_conte69_32k and oded_hammer).
+  // levels, find a stationary map on triceratops (11.1 degrees, 11 s in all; 13.3 in 8 s since 2026-11-28) and
+  // oblong (from its two disks since the LU's steps are the least-squares step, imbalance_least_squares.h), where
+  // those from the two-disk guess stalled. First they lost more than they won: 47 of the 66 meshes stationary
+  // instead of 49 (bear, from Tutte's map, ends at another minimum of the least-squares problem, 6.6 degrees instead
+  // of 3.6, not stationary in 30 s; likewise diplodocus, brainspace_conte69_32k and oded_hammer).
   bool multilevel_fallback_applies(const std::vector<Vector3>& x) const
   {
     if(!m_options.multilevel || m_multilevel_tried || m_cancelled || m_no_balanced_solution || m_balanced_map_folded
