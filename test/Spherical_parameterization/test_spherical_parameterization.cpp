@@ -1492,8 +1492,8 @@ TEST(LeastDistortion, MinimizesFromAPerturbedMap)
   EXPECT_EQ(again.newton_steps, 0u);
 }
 
-// The public option: where the map of cotangent or mean-value weights ends unconverged (u.off; the tetrahedron, whose
-// cotangent weights provably have no balanced bijective map), the bijective map of least conformal distortion, with
+// The public option: where the map of cotangent or mean-value weights ends unconverged (u.off with cotangent weights;
+// the tetrahedron, whose cotangent weights provably have no balanced bijective map, and its mean-value weights), the bijective map of least conformal distortion, with
 // status OK when it is stationary; on a mesh whose cotangent map is balanced, that map.
 TEST(SphericalParameterize, LeastDistortion)
 {

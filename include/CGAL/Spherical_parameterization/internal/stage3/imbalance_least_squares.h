@@ -16,7 +16,7 @@
 // least-squares problem the collapse onto a point solves (every F_i -> 0), Psi is scale-free: a collapse keeps the
 // imbalances near 0.5, so the iterations are not drawn along the boosts towards it.
 // Steps, in tangent coordinates, each cut back until Phi decreases (Armijo) and every triangle stays positive:
-// - plain Gauss-Newton steps d = -J^+ r (rotations left out), from one sparse LU of J (gauss_newton_step()) or, from
+// - plain Gauss-Newton steps d = -(J P_N)^+ r (rotations left out), from one sparse LU of J (gauss_newton_step()) or, from
 //   Solver_tuning::least_squares_krylov_vertices on, by GMRES with the weights' multigrid
 //   (krylov_gauss_newton_step(), with the LU as its fallback);
 // - Marquardt's steps (J^T J + B + lambda diag(J^T J + B)) d = -grad Phi where those crawl or do not descend (step());
@@ -40,7 +40,6 @@
 #include <CGAL/Spherical_parameterization/internal/stage3/tangent_multigrid.h>
 #include <CGAL/Spherical_parameterization/internal/stage3/tangent_newton_system.h>
 
-#include <Eigen/Dense>
 #include <Eigen/Sparse>
 
 #include <algorithm>
@@ -178,15 +177,15 @@ public:
     });
   }
 
-  // The Gauss-Newton step without the barrier (after linearize(x, 0)), d = -J^+ r, from a sparse LU of J itself
-  // rather than a Cholesky factorization of J^T J (whose pattern is the two-ring: on bunny00, 81% of the time went
-  // into that factorization). J is square; where r = 0 its null space is the rotations N and its range misses a
+  // The Gauss-Newton step without the barrier (after linearize(x, 0)), d = -(J P_N)^+ r, from a sparse LU of J
+  // itself rather than a Cholesky factorization of J^T J (whose pattern is the two-ring: on bunny00, 81% of the time
+  // went into that factorization). J is square; where r = 0 its null space is the rotations N and its range misses a
   // 3-dimensional left null space (the three equations too many); elsewhere J N != 0 (the frames turn with the map).
   // The step is the least-squares step over the maps modulo rotations: d orthogonal to N with J d + r in L, the left
-  // null space of J P_N (P_N J^T z = 0 for z in L). With J_e = J + E (E tiny: regular), L = J_e^-T N, and
-  // d = J_e^-1 (-(r - P_L r) + Q c), Q an orthonormal basis of L, with c such that N^T d = 0 (the same step as
-  // krylov_gauss_newton_step()'s; two steps of inverse iteration from N, and the rotation part of the solve dropped,
-  // were not that step where J N != 0: CGAL's cow took 82 steps instead of 11). E adds 1e-10 |J_kk| to each
+  // null space of J P_N (P_N J^T z = 0 for z in L). With J_e = J + E (E tiny: regular), L = J_e^-T N (one transposed
+  // solve per rotation field), and d = J_e^-1 (-(r - P_L r)), which is orthogonal to N by construction: the same step
+  // as krylov_gauss_newton_step()'s. (Until 2026-11-28 two steps of inverse iteration from N gave J_e^-2T N instead,
+  // not L where J N != 0: CGAL's cow took 82 steps instead of 11.) E adds 1e-10 |J_kk| to each
   // diagonal entry (1e-10 of the largest where J_kk = 0), not 1e-10 of the largest everywhere: the rows carry 1/l_i,
   // so where spherical edges span 1e-9 to 0.4 the largest entry is the shortest edges', and 1e-10 of it distorted
   // the steps of the map's sparse part (with Marquardt's shift below, the same change: 56 of the 66 test meshes
@@ -240,37 +239,14 @@ public:
     Eigen::VectorXd rhs = -m_residual;
     for(int k = 0; k < 3; ++k)
       rhs -= basis[k].dot(rhs) * basis[k];
+    // N^T J_e^-1 rhs = (J_e^-T N)^T rhs = 0, rhs being orthogonal to L: the solve has no rotation part but rounding.
     Eigen::VectorXd delta = m_lu.solver().solve(rhs);
-    // d = delta + J_e^-1 Q c with N^T d = 0: the residual J d + r stays in L (the last projection below only removes
-    // rounding, or the rotation part where the 3 x 3 system is singular).
-    Eigen::VectorXd lifted[3];
-    Eigen::Matrix3d gauge;
-    Eigen::Vector3d offset;
-    for(int k = 0; k < 3; ++k)
-    {
-      lifted[k] = m_lu.solver().solve(basis[k]);
-      if(!lifted[k].allFinite())
-        return false;
-    }
-    for(int a = 0; a < 3; ++a)
-    {
-      offset[a] = -rotations[a].dot(delta);
-      for(int k = 0; k < 3; ++k)
-        gauge(a, k) = rotations[a].dot(lifted[k]);
-    }
-    const Eigen::FullPivLU<Eigen::Matrix3d> gauge_lu(gauge);
-    if(gauge_lu.isInvertible())
-    {
-      const Eigen::Vector3d c = gauge_lu.solve(offset);
-      for(int k = 0; k < 3; ++k)
-        delta += c[k] * lifted[k];
-    }
     for(int k = 0; k < 3; ++k)
       delta -= rotations[k].dot(delta) * rotations[k];
     return to_tangent_vectors(delta, d) && m_slope < 0.;
   }
 
-  // The same least-squares step d = -J^+ r, iteratively (after linearize(x, 0)): GMRES on J, preconditioned by one
+  // The same least-squares step d = -(J P_N)^+ r, iteratively (after linearize(x, 0)): GMRES on J, preconditioned by one
   // multigrid V-cycle of the weights' Laplacian, solved to the relative residual `forcing` (inexact Newton). False
   // when a solve fails (then gauss_newton_step() is the fallback).
   // Scaling: row i of J carries 1/l_i, and the normalized weights divide by the raw row sum rho_i, so
