@@ -16,8 +16,8 @@
 // least-squares problem the collapse onto a point solves (every F_i -> 0), Psi is scale-free: a collapse keeps the
 // imbalances near 0.5, so the iterations are not drawn along the boosts towards it.
 // Steps, in tangent coordinates, each cut back until Phi decreases (Armijo) and every triangle stays positive:
-// - plain Gauss-Newton steps d = -(J P_N)^+ r (rotations left out), from one sparse LU of J (gauss_newton_step()) or, from
-//   Solver_tuning::least_squares_krylov_vertices on, by GMRES with the weights' multigrid
+// - plain Gauss-Newton steps d = -(J P_N)^+ r (rotations left out), from one sparse LU of J (gauss_newton_step())
+//   or, from Solver_tuning::least_squares_krylov_vertices on, by GMRES with the weights' multigrid
 //   (krylov_gauss_newton_step(), with the LU as its fallback);
 // - Marquardt's steps (J^T J + B + lambda diag(J^T J + B)) d = -grad Phi where those crawl or do not descend (step());
 // - where the triangles stop the steps, the minimum subject to det(x_a, x_b, x_c) > 0 through
@@ -246,8 +246,8 @@ public:
     return to_tangent_vectors(delta, d) && m_slope < 0.;
   }
 
-  // The same least-squares step d = -(J P_N)^+ r, iteratively (after linearize(x, 0)): GMRES on J, preconditioned by one
-  // multigrid V-cycle of the weights' Laplacian, solved to the relative residual `forcing` (inexact Newton). False
+  // The same least-squares step d = -(J P_N)^+ r, iteratively (after linearize(x, 0)): GMRES on J, preconditioned by
+  // one multigrid V-cycle of the weights' Laplacian, solved to the relative residual `forcing` (inexact Newton). False
   // when a solve fails (then gauss_newton_step() is the fallback).
   // Scaling: row i of J carries 1/l_i, and the normalized weights divide by the raw row sum rho_i, so
   // J^ = S J with S = diag(rho_i l_i) is, up to the frames' rotations and the derivatives of l_i, minus the raw
