@@ -1493,7 +1493,8 @@ TEST(LeastDistortion, MinimizesFromAPerturbedMap)
 }
 
 // The public option: where the map of cotangent or mean-value weights ends unconverged (u.off with cotangent weights;
-// the tetrahedron, whose cotangent weights provably have no balanced bijective map, and its mean-value weights), the bijective map of least conformal distortion, with
+// the tetrahedron, whose cotangent weights provably have no balanced bijective map; oscad_pcbvicebar's mean-value
+// weights), the bijective map of least conformal distortion, with
 // status OK when it is stationary; on a mesh whose cotangent map is balanced, that map.
 TEST(SphericalParameterize, LeastDistortion)
 {
@@ -1585,10 +1586,28 @@ TEST(SphericalParameterize, LeastDistortion)
     EXPECT_TRUE(exact_certificate(mesh, sphere).bijective());
   }
   {
-    // Mean-value weights whose least-squares iterations end not stationary (a known failure: they collapse it).
-    const SP::Result result = run("tetrahedron.off", SP::Weighting::MEAN_VALUE, true, &with);
+    // Mean-value weights whose least-squares iterations end not stationary (a known failure: CAD slivers).
+    Mesh mesh = read_mesh(shared_meshes + "/oscad_pcbvicebar.off");
+    auto sphere = mesh.add_property_map<Mesh::Vertex_index, Point>("v:sphere", Point(0, 0, 0)).first;
+    const SP::Result result = SP::spherical_parameterize(
+        mesh, sphere,
+        SP::parameters::combine(SP::parameters::weighting(SP::Weighting::MEAN_VALUE),
+                                SP::parameters::least_distortion(true), SP::parameters::max_seconds(60.)));
     EXPECT_EQ(result.status, SP::Error_code::OK) << result.message;
     EXPECT_TRUE(result.least_distortion_map);
+    EXPECT_TRUE(exact_certificate(mesh, sphere).bijective());
+  }
+  {
+    // The tetrahedron's mean-value weights: stationary from its vertices seen from their centroid (its two disks fold
+    // a triangle, from which the iterations collapsed it), so the option keeps that map.
+    const SP::Result plain = run("tetrahedron.off", SP::Weighting::MEAN_VALUE, false, &without);
+    EXPECT_EQ(plain.status, SP::Error_code::OK) << plain.message;
+    EXPECT_EQ(plain.initial_flipped_faces, 0u);
+    EXPECT_LE(plain.max_stationarity, 1e-6);
+    const SP::Result result = run("tetrahedron.off", SP::Weighting::MEAN_VALUE, true, &with);
+    EXPECT_EQ(result.status, SP::Error_code::OK) << result.message;
+    EXPECT_FALSE(result.least_distortion_map);
+    EXPECT_NEAR(with, without, 1e-9);
   }
   {
     const SP::Result result = run("tetrahedron.off", SP::Weighting::COTANGENT, true, &with);

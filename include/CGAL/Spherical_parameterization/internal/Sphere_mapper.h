@@ -521,11 +521,13 @@ private:
     // Nor has a tetrahedron whose weights are not of the form of inscribability.h (its proof is about the weights
     // given: with hold_weights the map may be balanced for held ones). Its two disks are no answer (one of their
     // four triangles was folded on every tetrahedron tried, and the repair collapsed three vertices onto one point):
-    // its vertices seen from their centroid are, bijective by construction.
+    // its vertices seen from their centroid are, bijective by construction. They are also the start of any other
+    // tetrahedron whose two disks fold a triangle: from the folded start, the mean-value least-squares iterations
+    // collapsed CGAL's tetrahedron.off onto two antipodal pairs; from the centroid map they are stationary in 3 steps.
     if(!m_options.hold_weights)
       m_tetrahedron = check_tetrahedron_weights(
           m_system, std::max(1e-9, m_options.iterations.tuning.tetrahedron_margin * m_options.iterations.tolerance));
-    if(m_tetrahedron.proven_no_balanced_map)
+    if(m_tetrahedron.proven_no_balanced_map || (m_system.number_of_vertices == 4 && start.flipped_faces > 0))
     {
       tetrahedron_map(m_mesh.points, m_system.triangles, x);
       start = certify(m_system.triangles, x);
