@@ -1494,8 +1494,8 @@ TEST(LeastDistortion, MinimizesFromAPerturbedMap)
 
 // The public option: where the map of cotangent or mean-value weights ends unconverged (u.off with cotangent weights;
 // the tetrahedron, whose cotangent weights provably have no balanced bijective map; oscad_pcbvicebar's mean-value
-// weights), the bijective map of least conformal distortion, with
-// status OK when it is stationary; on a mesh whose cotangent map is balanced, that map.
+// weights), the bijective map of least conformal distortion, with status OK when it is stationary; on a mesh whose
+// cotangent map is balanced, that map.
 TEST(SphericalParameterize, LeastDistortion)
 {
   // `file`: a name in CGAL's data, or a path.
