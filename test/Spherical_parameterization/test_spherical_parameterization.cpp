@@ -986,6 +986,27 @@ TEST(MeshCoarsening, CoarseningAndProlongationKeepGenusZeroAndPositiveFans)
   }
 }
 
+// The coarsest level of a multilevel start (below multilevel_fallback_min_vertices: nothing coarser solves it) falls
+// back to stages 2 and 3 where Newton's full steps from its two disks fail, as a mesh of its own does; a coarser level
+// above that size is left to the finer level's other paths. oscad_pcbvicebar (132 vertices) is such a mesh.
+TEST(MeshCoarsening, CoarsestLevelFallsBackToStagesTwoAndThree)
+{
+  const SPI::Mesh_arrays arrays = arrays_of(read_mesh(shared_meshes + "/oscad_pcbvicebar.off"));
+  ASSERT_LT(arrays.points.size(), SPI::Solver_tuning().multilevel_fallback_min_vertices);
+  for(const bool coarse_level : {false, true})
+  {
+    SPI::Sphere_system system = system_of(arrays);
+    SPI::Pipeline_options options;
+    options.coarse_level = coarse_level;
+    const SP::Default_disk_solver_traits solver;
+    std::vector<SPI::Vector3> x;
+    const SP::Result result = SPI::Sphere_mapper<SP::Default_disk_solver_traits>(arrays, system, options, solver).map(x);
+    EXPECT_EQ(result.status, SP::Error_code::OK) << "coarse level " << coarse_level << ": " << result.message;
+    EXPECT_GT(result.gauss_seidel.iterations, 0u) << "Newton's full steps alone balance it: not the case tested";
+    EXPECT_TRUE(SPI::certify(system.triangles, x).bijective);
+  }
+}
+
 // Inserted at the centre of its ring's kernel (the least-distortion multilevel start), every removed vertex finds a
 // positive fan: the map carried back is bijective.
 TEST(MeshCoarsening, KernelCentreInsertionKeepsTheMapBijective)

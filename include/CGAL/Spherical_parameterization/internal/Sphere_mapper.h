@@ -579,7 +579,11 @@ private:
     {
       direct_newton = m_system.symmetric ? full_newton_steps(state, m_iteration_options, iterations_clock)
                                          : least_squares_newton(state, m_iteration_options, iterations_clock);
-      if(m_options.coarse_level && !direct_newton.converged)
+      // A coarser level that failed here is left to the finer level's other paths, except the coarsest: nothing
+      // coarser solves it, and the stages below balance such small meshes in hundredths of a second (CGAL's camel
+      // refined once: its level of 152 vertices failed Newton's full steps once the collapses were spread).
+      if(m_options.coarse_level && !direct_newton.converged
+         && m_system.number_of_vertices >= m_options.iterations.tuning.multilevel_fallback_min_vertices)
       {
         m_iteration_options.max_gauss_seidel_sweeps = 0;
         m_iteration_options.max_newton_sweeps = 0;
