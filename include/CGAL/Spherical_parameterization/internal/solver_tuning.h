@@ -40,7 +40,8 @@ struct Solver_tuning
   double multilevel_retry_coarsening_ratio = 0.5;
   // Smaller meshes where the two-disk path ends unconverged try the multilevel start as well (Sphere_mapper); below
   // this size its coarser level would be a handful of vertices. Also the size from which a coarser level of the
-  // multilevel start is itself solved from its own coarser level first (the two-disk path as its fallback).
+  // multilevel start is itself solved from its own coarser level first (the two-disk path as its fallback); a coarser
+  // level below it is the coarsest, and keeps stages 2 and 3 as its fallback (Sphere_mapper).
   std::size_t multilevel_fallback_min_vertices = 200;
   std::size_t multilevel_smoothing_sweeps = 10;
   // The coarser levels stop at this largest imbalance (or the user's tolerance if tighter). The boosts change the
