@@ -989,7 +989,7 @@ TEST(MeshCoarsening, CoarseningAndProlongationKeepGenusZeroAndPositiveFans)
 // The coarsest level of a multilevel start (below multilevel_fallback_min_vertices: nothing coarser solves it) falls
 // back to stages 2 and 3 where Newton's full steps from its two disks fail, as a mesh of its own does; a coarser level
 // above that size is left to the finer level's other paths. oscad_pcbvicebar (132 vertices) is such a mesh.
-TEST(MeshCoarsening, CoarsestLevelFallsBackToStagesTwoAndThree)
+TEST(MultilevelStart, CoarsestLevelFallsBackToStagesTwoAndThree)
 {
   const SPI::Mesh_arrays arrays = arrays_of(read_mesh(shared_meshes + "/oscad_pcbvicebar.off"));
   ASSERT_LT(arrays.points.size(), SPI::Solver_tuning().multilevel_fallback_min_vertices);

@@ -581,7 +581,8 @@ private:
                                          : least_squares_newton(state, m_iteration_options, iterations_clock);
       // A coarser level that failed here is left to the finer level's other paths, except the coarsest: nothing
       // coarser solves it, and the stages below balance such small meshes in hundredths of a second (CGAL's camel
-      // refined once: its level of 152 vertices failed Newton's full steps once the collapses were spread).
+      // refined once, under a coarsening tried on 2026-11-28: its level of 152 vertices failed Newton's full steps;
+      // manual, Method).
       if(m_options.coarse_level && !direct_newton.converged
          && m_system.number_of_vertices >= m_options.iterations.tuning.multilevel_fallback_min_vertices)
       {
