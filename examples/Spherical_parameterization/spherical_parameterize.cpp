@@ -180,7 +180,9 @@ void print_usage(std::ostream& out)
          "  of log(relative sphere area / relative mesh area); null when no map was computed or an existing\n"
          "  output was kept),\n"
          "  initial_flipped_faces,\n"
-         "  uniform_initial_guess_fallback, multilevel_fallback, admissible_weights, raised_weights,\n"
+         "  uniform_initial_guess_fallback, multilevel_fallback, partition_retries and partition_seed (other\n"
+         "  METIS partitions tried where every way from the first ended unconverged, and the seed of the map\n"
+         "  returned), admissible_weights, raised_weights,\n"
          "  clamped_weights, rejected_moves,\n"
          "  separator_size, cut_loop_length, levels (the multilevel start, coarsest first, [] when not used:\n"
          "  [{vertices,newton_steps,linear_iterations,seconds}, ...]),\n"
@@ -574,6 +576,8 @@ void print_json(std::ostream& out, const SP::Result& r, const Run_figures& run)
       {"initial_flipped_faces", json_count(r.initial_flipped_faces, computed)},
       {"uniform_initial_guess_fallback", boolean(r.uniform_initial_guess_fallback)},
       {"multilevel_fallback", boolean(r.multilevel_fallback)},
+      {"partition_retries", std::to_string(r.partition_retries)},
+      {"partition_seed", std::to_string(r.partition_seed)},
       {"admissible_weights", boolean(r.admissible_weights)},
       {"raised_weights", std::to_string(r.raised_weights)},
       {"clamped_weights", std::to_string(r.clamped_weights)},
@@ -659,7 +663,10 @@ void print_text(std::ostream& out, const SP::Result& r, const Run_figures& run)
       << r.initial_guess.residual << ", " << plural(r.initial_flipped_faces, "non-positive face");
   if(r.levels.empty())
     out << ", cut loop of " << r.cut_loop_length << " vertices"
-        << (r.uniform_initial_guess_fallback ? ", uniform-weight disks" : "");
+        << (r.uniform_initial_guess_fallback ? ", uniform-weight disks" : "")
+        << (r.partition_retries > 0 ? ", the partition of METIS seed " + std::to_string(r.partition_seed) + " ("
+                                          + plural(r.partition_retries, "partition") + " tried after the first)"
+                                    : std::string());
   else
   {
     out << ", multilevel start: ";

@@ -231,7 +231,7 @@ keys = {"format", "input", "output", "status", "success", "skipped", "message", 
         "held_weight_vertices", "held_weight_parameter", "requested_weights_max_imbalance",
         "least_distortion_map", "balanced_map_folded", "distortion_energy", "max_distortion_stationarity", "least_distortion_steps",
         "distortion_vertices_at_rounding_floor", "max_stationarity", "unstationary_vertices", "residual", "max_tangential_residual", "flipped_faces", "total_signed_area", "bijective",
-        "distortion", "initial_flipped_faces", "uniform_initial_guess_fallback", "multilevel_fallback", "admissible_weights", "raised_weights", "clamped_weights",
+        "distortion", "initial_flipped_faces", "uniform_initial_guess_fallback", "multilevel_fallback", "partition_retries", "partition_seed", "admissible_weights", "raised_weights", "clamped_weights",
         "rejected_moves", "separator_size",
         "cut_loop_length", "levels", "stages", "written", "seconds"}
 good = json.load(open(sys.argv[1]))

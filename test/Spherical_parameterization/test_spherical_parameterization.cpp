@@ -1007,6 +1007,57 @@ TEST(MultilevelStart, CoarsestLevelFallsBackToStagesTwoAndThree)
   }
 }
 
+// Tutte's balanced map is bijective, so where every way from one METIS partition ends unconverged, the path failed:
+// the two-disk guesses of the next seeds' partitions are tried (Sphere_mapper::retry_other_partitions). CGAL's
+// part.off (175 vertices, below the multilevel fallback's size) ends unconverged from the partitions of seeds 3 and 5.
+TEST(PartitionRetry, AnotherPartitionBalancesWhereTheFirstFails)
+{
+  Mesh mesh = read_mesh(cgal_data + "/part.off");
+  const SPI::Mesh_arrays arrays = arrays_of(mesh);
+  ASSERT_LT(arrays.points.size(), SPI::Solver_tuning().multilevel_fallback_min_vertices);
+  for(const int seed : {3, 5})
+  {
+    // Not the case tested unless the first partition alone fails.
+    SPI::Sphere_system system = system_of(arrays);
+    SPI::Pipeline_options options;
+    options.metis_seed = seed;
+    options.iterations.tuning.partition_retries = 0;
+    const SP::Default_disk_solver_traits solver;
+    std::vector<SPI::Vector3> x;
+    const SP::Result alone = SPI::Sphere_mapper<SP::Default_disk_solver_traits>(arrays, system, options, solver).map(x);
+    ASSERT_EQ(alone.status, SP::Error_code::NOT_CONVERGED) << "seed " << seed << ": " << alone.message;
+    EXPECT_EQ(alone.partition_retries, 0u);
+
+    auto sphere = mesh.add_property_map<Mesh::Vertex_index, Point>("v:sphere", Point()).first;
+    const SP::Result result =
+        SP::spherical_parameterize(mesh, sphere, SP::parameters::metis_seed(seed));
+    ASSERT_EQ(result.status, SP::Error_code::OK) << "seed " << seed << ": " << result.message;
+    EXPECT_GE(result.partition_retries, 1u);
+    EXPECT_LE(result.partition_retries, SPI::Solver_tuning().partition_retries);
+    EXPECT_EQ(result.partition_seed, seed + static_cast<int>(result.partition_retries));
+    EXPECT_LE(result.max_imbalance, 1e-6);
+    EXPECT_TRUE(exact_certificate(mesh, sphere).bijective());
+    mesh.remove_property_map(sphere);
+
+    // The paper's setting stays as published: no retry.
+    auto paper_sphere = mesh.add_property_map<Mesh::Vertex_index, Point>("v:paper", Point()).first;
+    const SP::Result paper = SP::spherical_parameterize(
+        mesh, paper_sphere,
+        SP::parameters::combine(SP::parameters::metis_seed(seed),
+                                SP::parameters::nonlinear_solver(SP::Nonlinear_solver::LOCAL_NEWTON),
+                                SP::parameters::max_seconds(5.)));
+    EXPECT_EQ(paper.partition_retries, 0u);
+    EXPECT_EQ(paper.partition_seed, seed);
+    mesh.remove_property_map(paper_sphere);
+  }
+  // Where the first partition's ways converge, none is tried.
+  auto sphere = mesh.add_property_map<Mesh::Vertex_index, Point>("v:sphere", Point()).first;
+  const SP::Result first = SP::spherical_parameterize(mesh, sphere, SP::parameters::metis_seed(0));
+  ASSERT_EQ(first.status, SP::Error_code::OK) << first.message;
+  EXPECT_EQ(first.partition_retries, 0u);
+  EXPECT_EQ(first.partition_seed, 0);
+}
+
 // Inserted at the centre of its ring's kernel (the least-distortion multilevel start), every removed vertex finds a
 // positive fan: the map carried back is bijective.
 TEST(MeshCoarsening, KernelCentreInsertionKeepsTheMapBijective)

@@ -139,6 +139,8 @@ py::dict result_dict(const SP::Result& r, const std::string& weights, const std:
   d["least_distortion_steps"] = count_if(r.least_distortion_steps, r.least_distortion_map);
   d["distortion_vertices_at_rounding_floor"] = count_if(r.distortion_vertices_at_rounding_floor, r.least_distortion_map);
   d["multilevel_fallback"] = r.multilevel_fallback;
+  d["partition_retries"] = r.partition_retries;
+  d["partition_seed"] = r.partition_seed;
   d["residual"] = number(r.residual);
   d["max_tangential_residual"] = number(r.max_tangential_residual);
   d["flipped_faces"] = r.flipped_faces;

@@ -57,6 +57,9 @@ struct Iteration_options
   // every way to the balanced map ends as soon as Newton's full steps reach a folded one
   // (Iteration_report::balanced_map_folded): the minimization is the answer then.
   bool least_distortion_follows = false;
+  // Stage 3 ends after Newton's full steps (global_newton): a retry from another partition's two-disk guess
+  // (Sphere_mapper::retry_other_partitions), where the slow bijectivity-preserving steps have had their turn already.
+  bool free_steps_only = false;
 
   bool cancel_requested() const { return keep_going && !keep_going(); }
 };

@@ -395,7 +395,7 @@ inline Iteration_report global_newton(Sphere_state& state, const Iteration_optio
   Mobius_newton_statistics statistics;
   Iteration_report free_steps = newton_through_folds(state, options, clock, &statistics);
   if(free_steps.converged || free_steps.cancelled || free_steps.out_of_time
-     || (free_steps.balanced_map_folded && options.least_distortion_follows))
+     || (free_steps.balanced_map_folded && options.least_distortion_follows) || options.free_steps_only)
     return free_steps;
   // Otherwise from where it started (restored: its best iterate has the fewest non-positive faces), with every step
   // keeping every positive triangle positive.
