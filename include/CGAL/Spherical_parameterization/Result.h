@@ -131,9 +131,9 @@ struct Result
   /// The map comes from the multilevel start tried after the two-disk path ended unconverged on a mesh below the
   /// multilevel size (the manual's Method section); `levels` then describes it.
   bool multilevel_fallback = false;
-  /// Symmetric positive weights only: how many other METIS partitions were tried after every way from the first
-  /// ended unconverged (at most 6, `Solver_tuning::partition_retries`; the manual's Method section); 0 when none
-  /// was needed.
+  /// Symmetric positive weights only: how many other METIS partitions were tried after the fast ways from the first
+  /// (Newton's full steps, the multilevel fallback) ended unconverged (at most 6, `Solver_tuning::partition_retries`;
+  /// the manual's Method section); 0 when none was needed.
   std::size_t partition_retries = 0;
   /// The METIS seed of the partition whose two-disk guess led to the map returned: the seed given
   /// (`metis_seed`), or a later one when a partition retry converged.

@@ -190,8 +190,8 @@ using Sparse_LU_disk_solver_traits = internal::Sparse_LU_solver_traits;
 ///   \cgalParamNEnd
 ///   \cgalParamNBegin{metis_seed}
 ///     \cgalParamDescription{seed of METIS: the same seed gives bitwise identical output. With symmetric positive
-///                           weights, where every way from its partition ends unconverged, the partitions of the next
-///                           seeds are tried (`Result::partition_retries`, `Result::partition_seed`)}
+///                           weights, where the fast ways from its partition end unconverged, the partitions of the
+///                           next seeds are tried (`Result::partition_retries`, `Result::partition_seed`)}
 ///     \cgalParamType{`int`}
 ///     \cgalParamDefault{0}
 ///   \cgalParamNEnd

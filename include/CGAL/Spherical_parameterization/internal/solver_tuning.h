@@ -43,9 +43,9 @@ struct Solver_tuning
   // multilevel start is itself solved from its own coarser level first (the two-disk path as its fallback); a coarser
   // level below it is the coarsest, and keeps stages 2 and 3 as its fallback (Sphere_mapper).
   std::size_t multilevel_fallback_min_vertices = 200;
-  // Where every way ends unconverged on the mesh given with symmetric positive weights (whose balanced map is
+  // Where the fast ways end unconverged on the mesh given with symmetric positive weights (whose balanced map is
   // bijective), the two-disk guesses of this many other METIS partitions are tried (seeds seed + 1, seed + 2, ...),
-  // each with Newton's full steps only (Sphere_mapper::retry_other_partitions). The path to the balanced map depends
+  // each with Newton's full steps only (Sphere_mapper::fast_ways_first). The path to the balanced map depends
   // on the partition: CGAL's part.off (175 vertices) ended unconverged with 50 of the seeds 0 to 124; with 6 retries
   // all 125 converge, the worst after 4.
   std::size_t partition_retries = 6;
