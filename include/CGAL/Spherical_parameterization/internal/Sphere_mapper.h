@@ -327,8 +327,9 @@ private:
   // The two-disk guesses of other METIS partitions (seeds after the one given), each followed by Newton's full steps
   // only (from the guess, then after stage 2): where they converge, in hundredths of a second on small meshes, that
   // map replaces x; the bijectivity-preserving steps, the multilevel start and the cautious Newton, which take seconds
-  // to fail, are left to the first partition (fast_ways_first). Measured over METIS seeds 0 to 124 on CGAL's part.off: 50
-  // seeds ended unconverged without the retries, none with them (1 to 4 retries; the manual's Method section).
+  // to fail, are left to the first partition (fast_ways_first). Measured over METIS seeds 0 to 124 on CGAL's
+  // part.off: 50 seeds ended unconverged without the retries, none with them (1 to 4 retries; the manual's Method
+  // section).
   void retry_other_partitions(std::vector<Vector3>& x)
   {
     CGAL::Real_timer clock;
