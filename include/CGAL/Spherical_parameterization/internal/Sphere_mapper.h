@@ -158,6 +158,12 @@ public:
     const double budget = m_options.iterations.max_seconds;
     if(minimization_follows && budget >= 0.)
       m_options.iterations.max_seconds = budget * m_options.iterations.tuning.least_distortion_balance_share;
+    // The watchdog through folds (Solver_tuning::free_newton_nonmonotone_window) is for Tutte's weights, where it was
+    // measured; for other weights it is off, on their coarser levels too (which inherit this tuning): with it there,
+    // those levels' Tutte maps changed in their last bits, and the cotangent paths from them with it (oded_hammer,
+    // balanced in 15 s, then ended unconverged).
+    if(!m_options.coarse_level && !has_tutte_weights(m_system))
+      m_options.iterations.tuning.free_newton_nonmonotone_window = 1;
     m_iteration_options = m_options.iterations;
     m_iteration_options.least_distortion_follows = minimization_follows && !m_options.hold_weights;
     if(multilevel_applies())

@@ -12,9 +12,10 @@
 // tangent coordinates (tangent_newton_system.h), (3) splits the step into its rotation part (dropped: rotations
 // change nothing), its boost part (applied as an exact boost, whose linearization is poor) and the rest (added
 // and projected back onto the sphere), and (4) shortens the step until every positive triangle stays positive
-// (exact predicate) and the merit decreases (Step_merit); when no such step exists, five of the paper's local Newton
-// sweeps move the iterate instead. When the steps keep being cut short, it gives up and restores its best
-// iterate, so that another strategy can continue (global_newton.h).
+// (exact predicate) and the merit decreases (Step_merit; through folds, where none does, below the largest of the last
+// few merits); when no such step exists, five of the paper's local Newton sweeps move the iterate instead. When the
+// steps keep being cut short, it gives up and restores its best iterate, so that another strategy can continue
+// (global_newton.h).
 
 #ifndef CGAL_SPHERICAL_PARAMETERIZATION_INTERNAL_STAGE3_MOBIUS_NEWTON_H
 #define CGAL_SPHERICAL_PARAMETERIZATION_INTERNAL_STAGE3_MOBIUS_NEWTON_H
@@ -27,6 +28,7 @@
 
 #include <CGAL/number_type_config.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstddef>
 #include <vector>
@@ -154,6 +156,7 @@ inline Iteration_report mobius_newton(Sphere_state& state, const Iteration_optio
   const std::vector<Vector3> start = x;
   driver.keep_best_iterate();
   std::size_t short_steps = 0;
+  std::vector<double> recent_merits; // of the last iterates, oldest first
   while(driver.may_start())
   {
     if(allow_folds && state.invalid_faces() > 0 && driver.measure().imbalance.balanced())
@@ -176,6 +179,9 @@ inline Iteration_report mobius_newton(Sphere_state& state, const Iteration_optio
     const double previous_residual = residual;
     residual = driver.measure().residual;
     const double merit = merit_of(driver.measure());
+    recent_merits.push_back(merit);
+    if(recent_merits.size() > std::max<std::size_t>(tuning.free_newton_nonmonotone_window, 1))
+      recent_merits.erase(recent_merits.begin());
 
     bool has_step = false;
     if(iterative)
@@ -202,29 +208,44 @@ inline Iteration_report mobius_newton(Sphere_state& state, const Iteration_optio
       if(boost_aim == Boost_aim::ROOT)
         boost = Vector3();
       double trial_merit = 0.;
-      accepted_t = backtracking_line_search(
-          tuning.newton_min_step,
-          [&](double t) {
-            for(std::size_t i = 0; i < n; ++i)
-            {
-              const Vector3 y = x[i] + t * step[i];
-              trial[i] = apply_boost(y * (1. / length(y)), t * boost);
-            }
-            // With `parallel`, the merit is computed beside the test of the faces (test_with_merit).
-            return test_with_merit(
-                parallel,
-                [&]() {
-                  return allow_folds ? has_degree_one(system, trial)
-                                     : !options.preserve_bijectivity || state.keeps_positive_faces(trial);
-                },
-                [&]() {
-                  trial_merit = step_merit == Step_merit::IMBALANCE ? imbalance_merit(system, trial)
-                                                                    : compute_residuals(system, trial).paper;
-                });
-          },
-          [&](double) {
-            return trial_merit < merit;
-          });
+      double merit_to_lower = merit;
+      auto line_search = [&]() {
+        return backtracking_line_search(
+            tuning.newton_min_step,
+            [&](double t) {
+              for(std::size_t i = 0; i < n; ++i)
+              {
+                const Vector3 y = x[i] + t * step[i];
+                trial[i] = apply_boost(y * (1. / length(y)), t * boost);
+              }
+              // With `parallel`, the merit is computed beside the test of the faces (test_with_merit).
+              return test_with_merit(
+                  parallel,
+                  [&]() {
+                    return allow_folds ? has_degree_one(system, trial)
+                                       : !options.preserve_bijectivity || state.keeps_positive_faces(trial);
+                  },
+                  [&]() {
+                    trial_merit = step_merit == Step_merit::IMBALANCE ? imbalance_merit(system, trial)
+                                                                      : compute_residuals(system, trial).paper;
+                  });
+            },
+            [&](double) {
+              return trial_merit < merit_to_lower;
+            });
+      };
+      accepted_t = line_search();
+      // Through folds, where no step lowers the merit, one that lowers the largest of the last few merits instead (see
+      // Solver_tuning::free_newton_nonmonotone_window; Sphere_mapper turns it off for weights other than Tutte's). Only
+      // with positive weights, whose balanced map is bijective, so that folds on the way are transient; with negative
+      // cotangent weights the steps often head for a folded balanced map, and the relaxed steps only lengthened those
+      // paths (CGAL's fandisk_large: 67 steps instead of 19).
+      const double recent_merit = *std::max_element(recent_merits.begin(), recent_merits.end());
+      if(accepted_t == 0. && allow_folds && positive_weights && recent_merit > merit)
+      {
+        merit_to_lower = recent_merit;
+        accepted_t = line_search();
+      }
       if(accepted_t > 0.)
       {
         state.assign(trial, !allow_folds && options.preserve_bijectivity);
