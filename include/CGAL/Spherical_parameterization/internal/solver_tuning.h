@@ -87,9 +87,9 @@ struct Solver_tuning
   std::size_t free_newton_patience = 30;
   // Through folds, where no step lowers the merit, a step is accepted that lowers the largest of the merits of the
   // last this many iterates (a non-monotone line search, Grippo, Lampariello and Lucidi, used as a watchdog), with
-  // Tutte's weights (1 turns it off): paths through folds lower the merit only on the whole. Without it CGAL's camel refined twice ended unconverged: on its
-  // level of 156,290 vertices the full steps went through 110,000 folded faces and at the fourth step no step
-  // lowered Res; with it, one such step, then the usual ones converge there.
+  // Tutte's weights (1 turns it off): paths through folds lower the merit only on the whole. Without it CGAL's camel
+  // refined twice ended unconverged: on its level of 156,290 vertices the full steps went through 110,000 folded
+  // faces and at the fourth step no step lowered Res; with it, one such step, then the usual ones converge there.
   std::size_t free_newton_nonmonotone_window = 5;
   // The bijectivity-preserving steps give up after this many steps in a row cut below `short_step`.
   std::size_t cautious_patience = 3;
