@@ -1410,21 +1410,33 @@ TEST(LeastDistortion, FaceEnergyDerivatives)
 // On a face squeezed to edges of 1e-10 the gradient keeps its digits: its derivatives along the three rotations, 0 for
 // the exact gradient (F does not change under rotations), stay within the rounding of its entries (a few 1e-6 F here,
 // the entries being 1e10 F), where the gradient's absolute forms (sum_j L_ij p_j, p_j x p_k) missed by 6e3 F.
-TEST(LeastDistortion, GradientOfASqueezedFace)
+namespace {
+
+// A face of the sphere of edges about `size` with an obtuse 3D angle (a negative cotangent), positively oriented.
+void make_test_face(double size, double weight, SP::internal::least_distortion_detail::Face_shape& shape,
+                    SP::internal::least_distortion_detail::V3 (&p)[3])
 {
   namespace D = SP::internal::least_distortion_detail;
-  D::Face_shape shape;
-  shape.weight = 1e-5;
+  shape.weight = weight;
   shape.cot[0] = 0.3;
   shape.cot[1] = -0.2;
   shape.cot[2] = 1.4;
   const D::V3 centre = D::V3(1., 2., 2.).normalized(), u = centre.unitOrthogonal(), v = centre.cross(u);
   const double offsets[3][2] = {{0., 0.}, {1., 0.2}, {0.3, 0.9}};
-  D::V3 p[3];
   for(int k = 0; k < 3; ++k)
-    p[k] = (centre + 1e-10 * (offsets[k][0] * u + offsets[k][1] * v)).normalized();
+    p[k] = (centre + size * (offsets[k][0] * u + offsets[k][1] * v)).normalized();
   if(D::orientation(p[0], p[1], p[2]) < 0.)
     std::swap(p[1], p[2]);
+}
+
+} // namespace
+
+TEST(LeastDistortion, GradientOfASqueezedFace)
+{
+  namespace D = SP::internal::least_distortion_detail;
+  D::Face_shape shape;
+  D::V3 p[3];
+  make_test_face(1e-10, 1e-5, shape, p);
   ASSERT_GT(D::orientation(p[0], p[1], p[2]), 0.);
   D::Vector9 gradient;
   const double energy = D::face_energy(shape, p, &gradient);
@@ -1433,6 +1445,35 @@ TEST(LeastDistortion, GradientOfASqueezedFace)
   for(int k = 0; k < 3; ++k)
     torque += p[k].cross(D::V3(gradient.segment<3>(3 * k)));
   EXPECT_LT(torque.norm(), 1e-3 * energy);
+}
+
+// The smoother's corner blocks are face_energy()'s blocks, to the last bit (the maps do not change with it), on a
+// face of ordinary size with an obtuse angle and on one squeezed to edges of 1e-10.
+TEST(LeastDistortion, CornerBlockIsTheWholeHessiansBlock)
+{
+  namespace D = SP::internal::least_distortion_detail;
+  for(double size : {0.1, 1e-10})
+  {
+    D::Face_shape shape;
+    D::V3 p[3];
+    make_test_face(size, 2e-3, shape, p);
+    ASSERT_GT(D::orientation(p[0], p[1], p[2]), 0.);
+    D::Vector9 gradient;
+    D::Matrix9 hessian;
+    const double energy = D::face_energy(shape, p, &gradient, &hessian);
+    for(int k = 0; k < 3; ++k)
+    {
+      D::V3 corner_gradient;
+      Eigen::Matrix3d corner_hessian;
+      EXPECT_EQ(D::face_energy_at_corner(shape, p, k, corner_gradient, corner_hessian), energy);
+      for(int a = 0; a < 3; ++a)
+      {
+        EXPECT_EQ(corner_gradient[a], gradient[3 * k + a]) << "size " << size << ", corner " << k;
+        for(int b = 0; b < 3; ++b)
+          EXPECT_EQ(corner_hessian(a, b), hessian(3 * k + a, 3 * k + b)) << "size " << size << ", corner " << k;
+      }
+    }
+  }
 }
 
 // The boosts' balancing: from the regular icosahedron's map (the minimum of F, by symmetry) moved by a boost, it
