@@ -377,9 +377,10 @@ inline double conformal_distortion(const std::vector<std::array<int, 3>>& triang
 // falls and its faces stay positive). Vertices carried back from a coarser level sit where their ring's kernel is
 // widest, not where their faces keep their shape: F of the carried-back map was 2 to 3.3 where the minimum is about
 // 1.0 (CGAL's horse, vol2surf_lh_pial). The sweeps remove that local error, each for a few hundredths of a Newton
-// step on the same level (face_energy_at_corner: a move needs its corner's block only), and stop once a sweep lowers F by at least `stall` times what the one before did (what is left
-// is smooth, which Gauss-Seidel removes slowly and Newton's steps do not), after `max_sweeps`, or at the time budget
-// or a cancel (which the minimization that follows reports). Returns the sweeps.
+// step on the same level (face_energy_at_corner: a move needs its corner's block only), and stop once a sweep lowers
+// F by at least `stall` times what the one before did (what is left is smooth, which Gauss-Seidel removes slowly and
+// Newton's steps do not), after `max_sweeps`, or at the time budget or a cancel (which the minimization that follows
+// reports). Returns the sweeps.
 inline int smooth_conformal_distortion(const std::vector<std::array<int, 3>>& triangles,
                                        const std::vector<Vector3>& points, std::vector<Vector3>& x, int max_sweeps,
                                        double stall, const Iteration_options& options, const CGAL::Real_timer& clock)
