@@ -365,9 +365,10 @@ PYBIND11_MODULE(cgal_spherical_parameterization, m)
       "iteration, residual, non_positive_faces, seconds) is called at most ten times a second; returning False\n"
       "stops the run. Ctrl-C raises KeyboardInterrupt. hold_weights: cotangent weights whose balanced maps from\n"
       "Tutte's weights end before them are held where that path ends (info['held_weight_vertices']; experimental).\n"
-      "least_distortion: where the weights' map ends unconverged, the bijective map of least conformal distortion\n"
-      "instead (info['least_distortion_map']; info['balanced_map_folded']: the weights' balanced map reached was\n"
-      "folded, and the other ways to one were skipped; experimental).");
+      "least_distortion: where the weights' map ends unconverged, and always for mean-value weights (whose\n"
+      "least-squares map is not balanced; their iterations are skipped), the bijective map of least conformal\n"
+      "distortion instead (info['least_distortion_map']; info['balanced_map_folded']: the weights' balanced map\n"
+      "reached was folded, and the other ways to one were skipped; experimental).");
   m.def("certify", &certify, py::arg("X"), py::arg("F"),
         "Certifies a map onto the sphere with exact predicates: dict(bijective, flipped_faces, total_signed_area, "
         "faces).");
