@@ -14,6 +14,7 @@
 #include <CGAL/Spherical_parameterization/internal/stage3/imbalance_least_squares.h>
 #include <CGAL/Spherical_parameterization/internal/stage3/least_distortion.h>
 #include <CGAL/Spherical_parameterization/internal/stage3/multilevel_least_distortion.h>
+#include <CGAL/Spherical_parameterization/internal/stage3/supernodal_ldlt.h>
 #include <CGAL/Spherical_parameterization/is_bijective_on_sphere.h> // certificate and distortion, through the header kept for earlier code
 #include <CGAL/Spherical_parameterization/spherical_parameterize.h>
 
@@ -914,6 +915,74 @@ TEST(KrylovSolvers, MinresSolvesAnIndefiniteSystem)
     norm_b += b[i] * b[i];
   }
   EXPECT_LT(std::sqrt(error / norm_b), 1e-8);
+}
+
+// The supernodal L D L^T of the least-distortion steps, on the 2x2-block pattern of a mesh's vertex graph (two unknowns
+// per vertex, as the Hessians have): its solves match a dense factorization, for a positive definite matrix and for
+// indefinite ones (as many negative pivots as negative eigenvalues), for new values on the same pattern (the analysis
+// is reused), and from the upper triangle in the order given.
+TEST(SupernodalLdlt, SolvesLikeADenseFactorization)
+{
+  const SPI::Mesh_arrays arrays = arrays_of(read_mesh(cgal_data + "/oblong.off")); // 422 vertices
+  const SPI::Sphere_system system = system_of(arrays);
+  const int n = 2 * static_cast<int>(system.number_of_vertices);
+  auto matrix_with_shift = [&](double shift) {
+    std::vector<Eigen::Triplet<double>> entries;
+    for(std::size_t i = 0; i < system.number_of_vertices; ++i)
+    {
+      const int a = 2 * static_cast<int>(i);
+      const double degree = static_cast<double>(system.offsets[i + 1] - system.offsets[i]);
+      entries.emplace_back(a, a, degree + 1. - shift);
+      entries.emplace_back(a + 1, a + 1, degree + 1.1 - shift);
+      entries.emplace_back(a + 1, a, 0.05 * std::sin(double(i)));
+      for(std::size_t k = system.offsets[i]; k < system.offsets[i + 1]; ++k)
+      {
+        const int b = 2 * system.neighbors[k];
+        if(b > a)
+          for(int r = 0; r < 2; ++r)
+            for(int c = 0; c < 2; ++c)
+              entries.emplace_back(b + r, a + c, r == c ? -1. : 0.1 * std::cos(double(k + r + c)));
+      }
+    }
+    Eigen::SparseMatrix<double> lower(n, n);
+    lower.setFromTriplets(entries.begin(), entries.end());
+    return lower;
+  };
+  Eigen::VectorXd b(n);
+  for(int i = 0; i < n; ++i)
+    b[i] = std::sin(0.3 * i) + (i % 5 == 0 ? 1. : 0.);
+  SPI::Supernodal_ldlt factorization;
+  for(const double shift : {0., 1.5, 3.}) // positive definite, then indefinite
+  {
+    const Eigen::SparseMatrix<double> lower = matrix_with_shift(shift);
+    const Eigen::MatrixXd dense = Eigen::MatrixXd(Eigen::SparseMatrix<double>(lower.selfadjointView<Eigen::Lower>()));
+    ASSERT_TRUE(factorization.factorize(lower));
+    Eigen::VectorXd x = b;
+    factorization.solve_in_place(x);
+    const Eigen::VectorXd expected = dense.fullPivLu().solve(b);
+    EXPECT_LT((x - expected).norm(), 1e-9 * expected.norm()) << "shift " << shift;
+    // The same from the upper triangle, in the order given (a caller that ordered the unknowns itself).
+    SPI::Supernodal_ldlt in_given_order(false, Eigen::Upper);
+    ASSERT_TRUE(in_given_order.factorize(Eigen::SparseMatrix<double>(lower.transpose())));
+    Eigen::VectorXd z = b;
+    in_given_order.solve_in_place(z);
+    EXPECT_LT((z - expected).norm(), 1e-9 * expected.norm()) << "shift " << shift;
+    // The number of negative pivots is the matrix's number of negative eigenvalues (Sylvester's law of inertia).
+    const Eigen::Index negative_eigenvalues =
+        (Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd>(dense).eigenvalues().array() < 0.).count();
+    EXPECT_EQ((factorization.pivots().array() < 0.).count(), negative_eigenvalues) << "shift " << shift;
+    if(shift == 0.)
+    {
+      EXPECT_EQ(negative_eigenvalues, 0);
+      Eigen::VectorXd y = b;
+      factorization.solve_in_place(y, true, 0.); // |D| = D: the same solve
+      EXPECT_LT((y - x).norm(), 1e-12 * x.norm());
+    }
+    else
+    {
+      EXPECT_GT(negative_eigenvalues, 0) << "shift " << shift;
+    }
+  }
 }
 
 // Newton's full steps with the iterative linear solver (a mesh above iterative_newton_min_vertices): they reach the

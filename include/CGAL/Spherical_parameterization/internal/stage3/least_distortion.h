@@ -29,7 +29,7 @@
 #include <CGAL/Spherical_parameterization/internal/Vector3.h>
 #include <CGAL/Spherical_parameterization/internal/iteration_driver.h>
 #include <CGAL/Spherical_parameterization/internal/stage3/mobius.h>
-#include <CGAL/Spherical_parameterization/internal/stage3/sparse_factorization.h>
+#include <CGAL/Spherical_parameterization/internal/stage3/supernodal_ldlt.h>
 
 #include <CGAL/Real_timer.h>
 
@@ -563,7 +563,7 @@ inline Least_distortion_report minimize_conformal_distortion(const std::vector<s
   std::vector<double> row_abs(2 * n);
   Eigen::VectorXd gradient(2 * n);
   std::vector<Eigen::Triplet<double>> entries;
-  Sparse_ldlt factorization;
+  Supernodal_ldlt factorization; // supernodal: 3 to 4 times faster than Eigen's simplicial LDLT on these Hessians
   double marquardt = 1e-6;
   const double marquardt_floor = options.tuning.least_distortion_marquardt_floor;
   bool whole_hessian = false;
@@ -723,20 +723,9 @@ inline Least_distortion_report minimize_conformal_distortion(const std::vector<s
     // the projected Hessians instead cost a second factorization per step and converged linearly: CGAL's horse's
     // level of 3,030 vertices took 74 steps (52 now), vol2surf_lh_pial's of 27,661 vertices 11 s (4.6 s now).
     Eigen::VectorXd step = (-gradient.array() * scaling.array()).matrix();
-    auto& solver = factorization.solver();
-    const Eigen::VectorXd& pivots = solver.vectorD();
+    const Eigen::VectorXd& pivots = factorization.pivots();
     const double largest_pivot = pivots.maxCoeff();
-    if(pivots.minCoeff() <= -1e-6 * largest_pivot)
-    {
-      step = solver.permutationP() * step;
-      solver.matrixL().solveInPlace(step);
-      for(Eigen::Index i = 0; i < step.size(); ++i)
-        step[i] /= std::max(std::abs(pivots[i]), 1e-12 * largest_pivot);
-      solver.matrixU().solveInPlace(step);
-      step = solver.permutationPinv() * step;
-    }
-    else
-      step = solver.solve(step);
+    factorization.solve_in_place(step, pivots.minCoeff() <= -1e-6 * largest_pivot, 1e-12 * largest_pivot);
     step = (scaling.array() * step.array()).matrix();
     const double slope = gradient.dot(step);
     double longest = 0.;

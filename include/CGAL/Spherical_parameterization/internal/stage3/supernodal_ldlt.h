@@ -1,0 +1,377 @@
+// Copyright (c) 2026 CGAL Spherical Parameterization contributors.
+// This file is part of CGAL Spherical Parameterization, a package in CGAL's style (www.cgal.org).
+//
+// SPDX-License-Identifier: GPL-3.0-or-later
+//
+// Author(s)     : CGAL Spherical Parameterization contributors
+
+// A sparse L D L^T factorization (no pivoting, like Eigen's SimplicialLDLT) whose columns are grouped into supernodes:
+// runs of columns with the same pattern below the diagonal, stored as dense panels, so that the factorization is
+// made of dense products (Eigen's blocked kernels) instead of one sparse column at a time. The least-distortion
+// steps (least_distortion.h) factorize a Hessian of two unknowns per vertex at every step; on CGAL's bunny00 the
+// simplicial factorization was a third of their time, and on 100k vertices and more nearly all of it.
+//
+// The unknowns are ordered by METIS (nested dissection) on the first call, unless the caller ordered them; later calls
+// with the same pattern reuse the ordering, the elimination tree, the supernodes and where each entry of the matrix
+// goes.
+//
+// The method is the textbook one (elimination tree, column counts from the row subtrees, fundamental supernodes,
+// right-looking updates scattered into the ancestors' panels); see Davis, "Direct Methods for Sparse Linear
+// Systems", SIAM 2006, chapters 4 and 9.
+
+#ifndef CGAL_SPHERICAL_PARAMETERIZATION_INTERNAL_STAGE3_SUPERNODAL_LDLT_H
+#define CGAL_SPHERICAL_PARAMETERIZATION_INTERNAL_STAGE3_SUPERNODAL_LDLT_H
+
+#include <CGAL/Spherical_parameterization/internal/deferred_stop_signals.h>
+
+#include <Eigen/Dense>
+#include <Eigen/Sparse>
+
+#include <metis.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstddef>
+#include <vector>
+
+namespace CGAL {
+namespace Spherical_parameterization {
+namespace internal {
+
+class Supernodal_ldlt
+{
+public:
+  // `order_by_metis`: false keeps the unknowns' order (a caller that ordered them already). `stored`: the triangle of
+  // the symmetric matrices read (the other one is ignored).
+  explicit Supernodal_ldlt(bool order_by_metis = true, Eigen::UpLoType stored = Eigen::Lower)
+    : m_order_by_metis(order_by_metis), m_lower(stored == Eigen::Lower)
+  {}
+
+  // False when a pivot is zero or not finite (as Eigen's SimplicialLDLT, which does not pivot either).
+  bool factorize(const Eigen::SparseMatrix<double>& matrix)
+  {
+    Eigen::SparseMatrix<double> compressed;
+    if(!matrix.isCompressed())
+    {
+      compressed = matrix;
+      compressed.makeCompressed();
+    }
+    const Eigen::SparseMatrix<double>& A = matrix.isCompressed() ? matrix : compressed;
+    if(!m_analyzed || A.rows() != m_size || A.nonZeros() != m_nonzeros)
+    {
+      if(!analyze(A))
+        return false;
+    }
+    std::fill(m_values.begin(), m_values.end(), 0.);
+    const double* a = A.valuePtr();
+    for(std::size_t k = 0; k < m_scatter.size(); ++k)
+      if(m_scatter[k] != skipped)
+        m_values[m_scatter[k]] += a[k];
+    return factorize_numeric();
+  }
+
+  // x = A^-1 x, or with `absolute_pivots` x = (L |D| L^T)^-1 x, each |pivot| at least `floor`.
+  void solve_in_place(Eigen::VectorXd& x, bool absolute_pivots = false, double floor = 0.) const
+  {
+    const Eigen::Index n = m_size;
+    Eigen::VectorXd y(n);
+    for(Eigen::Index i = 0; i < n; ++i)
+      y[i] = x[m_order[i]];
+    Eigen::VectorXd gathered;
+    for(std::size_t s = 0; s < m_first.size() - 1; ++s) // L y = b
+    {
+      const Eigen::Index f = m_first[s], k = m_first[s + 1] - f, m = rows_of(s);
+      const Panel panel(m_values.data() + m_panel_start[s], m, k);
+      auto ys = y.segment(f, k);
+      panel.topLeftCorner(k, k).triangularView<Eigen::UnitLower>().solveInPlace(ys);
+      if(m > k)
+      {
+        gathered.noalias() = panel.bottomRows(m - k) * ys;
+        const int* rows = m_rows.data() + m_row_start[s] + k;
+        for(Eigen::Index q = 0; q < m - k; ++q)
+          y[rows[q]] -= gathered[q];
+      }
+    }
+    for(Eigen::Index i = 0; i < n; ++i)
+      y[i] /= absolute_pivots ? std::max(std::abs(m_pivots[i]), floor) : m_pivots[i];
+    for(std::size_t s = m_first.size() - 1; s-- > 0;) // L^T x = y
+    {
+      const Eigen::Index f = m_first[s], k = m_first[s + 1] - f, m = rows_of(s);
+      const Panel panel(m_values.data() + m_panel_start[s], m, k);
+      auto ys = y.segment(f, k);
+      if(m > k)
+      {
+        gathered.resize(m - k);
+        const int* rows = m_rows.data() + m_row_start[s] + k;
+        for(Eigen::Index q = 0; q < m - k; ++q)
+          gathered[q] = y[rows[q]];
+        ys.noalias() -= panel.bottomRows(m - k).transpose() * gathered;
+      }
+      panel.topLeftCorner(k, k).triangularView<Eigen::UnitLower>().transpose().solveInPlace(ys);
+    }
+    for(Eigen::Index i = 0; i < n; ++i)
+      x[m_order[i]] = y[i];
+  }
+
+  // The pivots D, in the factorization's order.
+  const Eigen::VectorXd& pivots() const { return m_pivots; }
+
+private:
+  typedef Eigen::Map<Eigen::MatrixXd> Panel_map;
+  typedef Eigen::Map<const Eigen::MatrixXd> Panel;
+  static constexpr std::size_t skipped = static_cast<std::size_t>(-1);
+
+  bool in_stored_triangle(int row, int column) const { return m_lower ? row >= column : row <= column; }
+
+  Eigen::Index rows_of(std::size_t s) const { return m_row_start[s + 1] - m_row_start[s]; }
+
+  bool analyze(const Eigen::SparseMatrix<double>& A)
+  {
+    m_analyzed = false;
+    const int n = static_cast<int>(A.rows());
+    m_size = A.rows();
+    m_nonzeros = A.nonZeros();
+    // The graph of A (both triangles, no diagonal) for METIS.
+    std::vector<std::vector<int>> neighbours(n);
+    for(int j = 0; j < n; ++j)
+      for(Eigen::SparseMatrix<double>::InnerIterator it(A, j); it; ++it)
+        if(in_stored_triangle(static_cast<int>(it.row()), j) && it.row() != j)
+        {
+          neighbours[j].push_back(static_cast<int>(it.row()));
+          neighbours[it.row()].push_back(j);
+        }
+    std::vector<idx_t> xadj(n + 1, 0), adjncy;
+    for(int i = 0; i < n; ++i)
+    {
+      std::sort(neighbours[i].begin(), neighbours[i].end());
+      neighbours[i].erase(std::unique(neighbours[i].begin(), neighbours[i].end()), neighbours[i].end());
+      adjncy.insert(adjncy.end(), neighbours[i].begin(), neighbours[i].end());
+      xadj[i + 1] = static_cast<idx_t>(adjncy.size());
+    }
+    m_order.resize(n);
+    std::vector<int> position(n);
+    {
+      std::vector<idx_t> perm(n), iperm(n);
+      idx_t vertices = n;
+      bool ordered = false; // by METIS; otherwise (no off-diagonal entry, or METIS failed) as given
+      if(m_order_by_metis && !adjncy.empty())
+      {
+        const Deferred_stop_signals deferred; // see deferred_stop_signals.h
+        ordered = METIS_NodeND(&vertices, xadj.data(), adjncy.data(), nullptr, nullptr, perm.data(), iperm.data())
+                  == METIS_OK;
+      }
+      for(int i = 0; i < n; ++i)
+      {
+        m_order[i] = ordered ? static_cast<int>(perm[i]) : i; // row i of the factor is row m_order[i] of A
+        position[m_order[i]] = i;
+      }
+    }
+    // The permuted lower triangle's pattern by columns (rows below the diagonal) and by rows (the columns left of it).
+    std::vector<std::vector<int>> below(n), left(n);
+    for(int i = 0; i < n; ++i)
+      for(idx_t k = xadj[i]; k < xadj[i + 1]; ++k)
+      {
+        const int p = position[i], q = position[adjncy[k]];
+        if(p > q)
+        {
+          below[q].push_back(p);
+          left[p].push_back(q);
+        }
+      }
+    // The elimination tree (Liu's algorithm, with path compression through `ancestor`).
+    std::vector<int> parent(n, -1), ancestor(n, -1);
+    for(int i = 0; i < n; ++i)
+      for(int k : left[i])
+        for(int r = k; r != -1 && r < i;)
+        {
+          const int next = ancestor[r];
+          ancestor[r] = i;
+          if(next == -1)
+          {
+            parent[r] = i;
+            break;
+          }
+          r = next;
+        }
+    // Column counts of L (diagonal included): row i of L is the subtree of the tree reached from left[i] up to i.
+    std::vector<int> count(n, 1), mark(n, -1);
+    for(int i = 0; i < n; ++i)
+    {
+      mark[i] = i;
+      for(int k : left[i])
+        for(int r = k; r != -1 && mark[r] != i; r = parent[r])
+        {
+          ++count[r];
+          mark[r] = i;
+        }
+    }
+    // Fundamental supernodes: column j joins column j - 1's when j - 1 is its only child and their patterns nest.
+    std::vector<int> children(n, 0);
+    for(int j = 0; j < n; ++j)
+      if(parent[j] != -1)
+        ++children[parent[j]];
+    m_first.clear();
+    std::vector<int> owner(n);
+    for(int j = 0; j < n; ++j)
+    {
+      const bool joins = j > 0 && parent[j - 1] == j && children[j] == 1 && count[j - 1] == count[j] + 1;
+      if(!joins)
+        m_first.push_back(j);
+      owner[j] = static_cast<int>(m_first.size()) - 1;
+    }
+    m_first.push_back(n);
+    const std::size_t supernodes = m_first.size() - 1;
+    // Each supernode's rows: its columns, the rows of A below them, and the rows of its children's supernodes below it.
+    std::vector<std::vector<int>> child_supernodes(supernodes);
+    for(std::size_t s = 0; s < supernodes; ++s)
+    {
+      const int last = m_first[s + 1] - 1;
+      if(parent[last] != -1)
+        child_supernodes[owner[parent[last]]].push_back(static_cast<int>(s));
+    }
+    m_row_start.assign(1, 0);
+    m_rows.clear();
+    m_panel_start.assign(1, 0);
+    std::fill(mark.begin(), mark.end(), -1);
+    std::vector<int> rows;
+    for(std::size_t s = 0; s < supernodes; ++s)
+    {
+      const int f = m_first[s], l = m_first[s + 1] - 1;
+      rows.clear();
+      for(int j = f; j <= l; ++j)
+      {
+        rows.push_back(j);
+        mark[j] = static_cast<int>(s);
+      }
+      auto add = [&](int r) {
+        if(r > l && mark[r] != static_cast<int>(s))
+        {
+          mark[r] = static_cast<int>(s);
+          rows.push_back(r);
+        }
+      };
+      for(int j = f; j <= l; ++j)
+        for(int r : below[j])
+          add(r);
+      for(int c : child_supernodes[s])
+        for(std::size_t q = m_row_start[c]; q < m_row_start[c + 1]; ++q)
+          add(m_rows[q]);
+      std::sort(rows.begin() + (l - f + 1), rows.end());
+      if(static_cast<int>(rows.size()) != count[f])
+        return false; // cannot happen: the symbolic steps disagree
+      m_rows.insert(m_rows.end(), rows.begin(), rows.end());
+      m_row_start.push_back(m_rows.size());
+      m_panel_start.push_back(m_panel_start.back() + rows.size() * static_cast<std::size_t>(l - f + 1));
+    }
+    m_values.assign(m_panel_start.back(), 0.);
+    m_pivots.resize(n);
+    // Where each stored entry of A's lower triangle goes in the panels.
+    m_scatter.assign(static_cast<std::size_t>(A.nonZeros()), skipped);
+    std::vector<int> slot(n, -1);
+    std::vector<std::vector<std::pair<int, std::size_t>>> entries_of_column(n); // (permuted row, index in A)
+    for(int j = 0; j < n; ++j)
+      for(Eigen::Index e = A.outerIndexPtr()[j]; e < A.outerIndexPtr()[j + 1]; ++e)
+        if(in_stored_triangle(A.innerIndexPtr()[e], j))
+        {
+          int p = position[A.innerIndexPtr()[e]], q = position[j];
+          if(p < q)
+            std::swap(p, q);
+          entries_of_column[q].emplace_back(p, static_cast<std::size_t>(e));
+        }
+    for(std::size_t s = 0; s < supernodes; ++s)
+    {
+      const int f = m_first[s], k = m_first[s + 1] - f;
+      const std::size_t m = m_row_start[s + 1] - m_row_start[s];
+      for(std::size_t q = 0; q < m; ++q)
+        slot[m_rows[m_row_start[s] + q]] = static_cast<int>(q);
+      for(int c = 0; c < k; ++c)
+        for(const auto& entry : entries_of_column[f + c])
+          m_scatter[entry.second] = m_panel_start[s] + static_cast<std::size_t>(c) * m + slot[entry.first];
+    }
+    m_analyzed = true;
+    return true;
+  }
+
+  bool factorize_numeric()
+  {
+    const std::size_t supernodes = m_first.size() - 1;
+    std::vector<int> slot(static_cast<std::size_t>(m_size), -1);
+    Eigen::MatrixXd update, positive, negative;
+    for(std::size_t s = 0; s < supernodes; ++s)
+    {
+      const Eigen::Index f = m_first[s], k = m_first[s + 1] - f, m = rows_of(s);
+      Panel_map panel(m_values.data() + m_panel_start[s], m, k);
+      // The panel's own columns, one rank-1 update at a time (L D L^T of the diagonal block and the rows below it).
+      for(Eigen::Index j = 0; j < k; ++j)
+      {
+        const double d = panel(j, j);
+        if(!(d != 0.) || !std::isfinite(d))
+          return false;
+        m_pivots[f + j] = d;
+        panel.col(j).tail(m - j - 1) /= d;
+        if(j + 1 < k)
+          panel.block(j + 1, j + 1, m - j - 1, k - j - 1).noalias() -=
+              panel.col(j).tail(m - j - 1) * (d * panel.col(j).segment(j + 1, k - j - 1)).transpose();
+      }
+      if(m == k)
+        continue;
+      // The update of the rows below, L21 D L21^T, split by the pivots' signs into two symmetric rank updates.
+      const Eigen::Index below = m - k;
+      Eigen::Index positives = 0;
+      for(Eigen::Index j = 0; j < k; ++j)
+        positives += m_pivots[f + j] > 0.;
+      positive.resize(below, positives);
+      negative.resize(below, k - positives);
+      for(Eigen::Index j = 0, p = 0, q = 0; j < k; ++j)
+      {
+        const double d = m_pivots[f + j];
+        if(d > 0.)
+          positive.col(p++) = std::sqrt(d) * panel.col(j).tail(below);
+        else
+          negative.col(q++) = std::sqrt(-d) * panel.col(j).tail(below);
+      }
+      update.setZero(below, below);
+      if(positives > 0)
+        update.selfadjointView<Eigen::Lower>().rankUpdate(positive, 1.);
+      if(positives < k)
+        update.selfadjointView<Eigen::Lower>().rankUpdate(negative, -1.);
+      // Scattered into the supernodes that own the rows below, column by column.
+      const int* rows = m_rows.data() + m_row_start[s] + k;
+      int target = -1;
+      for(Eigen::Index c = 0; c < below; ++c)
+      {
+        const int column = rows[c];
+        if(target == -1 || column >= m_first[target + 1])
+        {
+          target = static_cast<int>(std::upper_bound(m_first.begin(), m_first.end(), column) - m_first.begin()) - 1;
+          for(std::size_t q = m_row_start[target]; q < m_row_start[target + 1]; ++q)
+            slot[m_rows[q]] = static_cast<int>(q - m_row_start[target]);
+        }
+        const std::size_t height = m_row_start[target + 1] - m_row_start[target];
+        double* destination =
+            m_values.data() + m_panel_start[target] + static_cast<std::size_t>(column - m_first[target]) * height;
+        for(Eigen::Index r = c; r < below; ++r)
+          destination[slot[rows[r]]] -= update(r, c);
+      }
+    }
+    return true;
+  }
+
+  bool m_order_by_metis, m_lower;
+  bool m_analyzed = false;
+  Eigen::Index m_size = 0, m_nonzeros = 0;
+  std::vector<int> m_order;                  // row i of the factor is row m_order[i] of the matrix
+  std::vector<int> m_first;                  // first column of each supernode, then the size
+  std::vector<std::size_t> m_row_start;      // each supernode's rows in m_rows
+  std::vector<int> m_rows;                   // its columns first, then the rows below, increasing
+  std::vector<std::size_t> m_panel_start;    // each supernode's dense panel (column-major, all its rows)
+  std::vector<double> m_values;
+  std::vector<std::size_t> m_scatter;        // where each stored entry of the matrix goes in m_values
+  Eigen::VectorXd m_pivots;
+};
+
+} // namespace internal
+} // namespace Spherical_parameterization
+} // namespace CGAL
+
+#endif // CGAL_SPHERICAL_PARAMETERIZATION_INTERNAL_STAGE3_SUPERNODAL_LDLT_H
