@@ -920,7 +920,7 @@ TEST(KrylovSolvers, MinresSolvesAnIndefiniteSystem)
 // The supernodal L D L^T of the least-distortion steps, on the 2x2-block pattern of a mesh's vertex graph (two unknowns
 // per vertex, as the Hessians have): its solves match a dense factorization, for a positive definite matrix and for
 // indefinite ones (as many negative pivots as negative eigenvalues), for new values on the same pattern (the analysis
-// is reused), and from the upper triangle in the order given.
+// is reused) and for another pattern with as many entries, and from the upper triangle in the order given.
 TEST(SupernodalLdlt, SolvesLikeADenseFactorization)
 {
   const SPI::Mesh_arrays arrays = arrays_of(read_mesh(cgal_data + "/oblong.off")); // 422 vertices
@@ -983,6 +983,20 @@ TEST(SupernodalLdlt, SolvesLikeADenseFactorization)
       EXPECT_GT(negative_eigenvalues, 0) << "shift " << shift;
     }
   }
+  // A pattern with as many entries elsewhere (the same matrix, its unknowns numbered backwards) is analyzed again.
+  Eigen::PermutationMatrix<Eigen::Dynamic, Eigen::Dynamic, int> backwards(n);
+  for(int i = 0; i < n; ++i)
+    backwards.indices()[i] = n - 1 - i;
+  const Eigen::SparseMatrix<double> first = matrix_with_shift(0.);
+  Eigen::SparseMatrix<double> full;
+  full = first.selfadjointView<Eigen::Lower>().twistedBy(backwards);
+  const Eigen::SparseMatrix<double> renumbered = full.triangularView<Eigen::Lower>();
+  ASSERT_EQ(renumbered.nonZeros(), first.nonZeros());
+  ASSERT_TRUE(factorization.factorize(first));
+  ASSERT_TRUE(factorization.factorize(renumbered));
+  Eigen::VectorXd y = b;
+  factorization.solve_in_place(y);
+  EXPECT_LT((Eigen::MatrixXd(full) * y - b).norm(), 1e-9 * b.norm());
 }
 
 // Newton's full steps with the iterative linear solver (a mesh above iterative_newton_min_vertices): they reach the

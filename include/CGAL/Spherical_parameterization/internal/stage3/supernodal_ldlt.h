@@ -57,7 +57,7 @@ public:
       compressed.makeCompressed();
     }
     const Eigen::SparseMatrix<double>& A = matrix.isCompressed() ? matrix : compressed;
-    if(!m_analyzed || A.rows() != m_size || A.nonZeros() != m_nonzeros)
+    if(!m_analyzed || !has_analyzed_pattern(A))
     {
       if(!analyze(A))
         return false;
@@ -121,6 +121,15 @@ private:
   typedef Eigen::Map<const Eigen::MatrixXd> Panel;
   static constexpr std::size_t skipped = static_cast<std::size_t>(-1);
 
+  // The scatter map is only valid for the very pattern analyzed: a pattern with as many entries elsewhere is analyzed
+  // again (a comparison of the index arrays, small next to a factorization).
+  bool has_analyzed_pattern(const Eigen::SparseMatrix<double>& A) const
+  {
+    return A.rows() == m_size && static_cast<std::size_t>(A.nonZeros()) == m_pattern_rows.size()
+           && std::equal(m_pattern_starts.begin(), m_pattern_starts.end(), A.outerIndexPtr())
+           && std::equal(m_pattern_rows.begin(), m_pattern_rows.end(), A.innerIndexPtr());
+  }
+
   bool in_stored_triangle(int row, int column) const { return m_lower ? row >= column : row <= column; }
 
   Eigen::Index rows_of(std::size_t s) const { return m_row_start[s + 1] - m_row_start[s]; }
@@ -130,7 +139,8 @@ private:
     m_analyzed = false;
     const int n = static_cast<int>(A.rows());
     m_size = A.rows();
-    m_nonzeros = A.nonZeros();
+    m_pattern_starts.assign(A.outerIndexPtr(), A.outerIndexPtr() + A.outerSize() + 1);
+    m_pattern_rows.assign(A.innerIndexPtr(), A.innerIndexPtr() + A.nonZeros());
     // The graph of A (both triangles, no diagonal) for METIS.
     std::vector<std::vector<int>> neighbours(n);
     for(int j = 0; j < n; ++j)
@@ -359,7 +369,8 @@ private:
 
   bool m_order_by_metis, m_lower;
   bool m_analyzed = false;
-  Eigen::Index m_size = 0, m_nonzeros = 0;
+  Eigen::Index m_size = 0;
+  std::vector<int> m_pattern_starts, m_pattern_rows; // the pattern analyzed (compressed column storage)
   std::vector<int> m_order;                  // row i of the factor is row m_order[i] of the matrix
   std::vector<int> m_first;                  // first column of each supernode, then the size
   std::vector<std::size_t> m_row_start;      // each supernode's rows in m_rows
