@@ -770,6 +770,14 @@ TEST(Mobius, BalancingRaisesTheSpringEnergyAndKeepsTrianglesPositive)
   EXPECT_LT(SPI::boost_gradient(system, x).norm(), 1e-6 * gradient);
   EXPECT_EQ(state.invalid_faces(), 0u);
   EXPECT_EQ(SPI::certify(system.triangles, x).flipped_faces, 0u);
+  // `settled` tells whether the target was reached (mobius_newton keeps the step's boost part where it was not).
+  const std::vector<double> w = SPI::symmetric_raw_weights(system);
+  bool settled = false;
+  EXPECT_EQ(SPI::balance_boosts(state, w, 1e-6 * gradient, tuning, SPI::Boost_aim::ROOT, false, &settled), 0u);
+  EXPECT_TRUE(settled);
+  tuning.boost_max_iterations = 0;
+  SPI::balance_boosts(state, w, 0., tuning, SPI::Boost_aim::ROOT, false, &settled);
+  EXPECT_FALSE(settled);
 }
 
 // The exact Jacobian of the boost gradient (Boost_aim::ROOT) agrees with central differences along the boosts,

@@ -163,7 +163,10 @@ public:
     // those levels' Tutte maps changed in their last bits, and the cotangent paths from them with it (oded_hammer,
     // balanced in 15 s, then ended unconverged).
     if(!m_options.coarse_level && !has_tutte_weights(m_system))
+    {
       m_options.iterations.tuning.free_newton_nonmonotone_window = 1;
+      m_options.iterations.tuning.boost_step_part_where_unsettled = false; // the same reason
+    }
     m_iteration_options = m_options.iterations;
     m_iteration_options.least_distortion_follows = minimization_follows && !m_options.hold_weights;
     if(multilevel_applies())

@@ -222,14 +222,15 @@ enum class Boost_aim
 // differences with MAXIMUM), each step shortened until g shrinks or E grows (away from the collapse, where E = 0;
 // near the solution E no longer resolves the change and g decides) and every positive face stays positive. With
 // Boost_aim::MAXIMUM, a Newton step that does not go up E is replaced by the gradient. Stops when |g| <= target,
-// after tuning.boost_max_iterations, or when no step helps. Returns the number of boosts applied.
+// after tuning.boost_max_iterations, or when no step helps. Returns the number of boosts applied; `settled`, if given,
+// tells whether |g| <= target at the end (a root of g near the map was found).
 // `w`: symmetric_raw_weights(state.system()), computed once by a caller that balances the boosts again and again.
 // `parallel`: the Jacobian is computed beside E and g (at the start, where it is wasted if g is already small enough,
 // and beside the update of the state after each boost), and each trial's test of the faces beside its E and g
 // (side_by_side.h: the same results).
 inline std::size_t balance_boosts(Sphere_state& state, const std::vector<double>& w, double target,
                                   const Solver_tuning& tuning, Boost_aim aim = Boost_aim::MAXIMUM,
-                                  bool parallel = false)
+                                  bool parallel = false, bool* settled = nullptr)
 {
   const Sphere_system& system = state.system();
   const std::vector<Vector3>& x = state.positions();
@@ -307,6 +308,8 @@ inline std::size_t balance_boosts(Sphere_state& state, const std::vector<double>
     g = trial_gradient;
     ++applied;
   }
+  if(settled != nullptr)
+    *settled = !(g.norm() > target);
   return applied;
 }
 

@@ -172,8 +172,9 @@ inline Iteration_report mobius_newton(Sphere_state& state, const Iteration_optio
     }
 
     // The boost gradient only needs to be small next to the residual forces that Newton is about to remove.
+    bool boosts_settled = true;
     balance_boosts(state, boost_weights, tuning.boost_target_factor * residual * static_cast<double>(n), tuning,
-                   boost_aim, parallel);
+                   boost_aim, parallel, &boosts_settled);
     if(!driver.within_budget())
       break;
     const double previous_residual = residual;
@@ -204,9 +205,18 @@ inline Iteration_report mobius_newton(Sphere_state& state, const Iteration_optio
       remove_rotation_and_boost(x, step, rotation, boost);
       // With Boost_aim::ROOT the boosts are outer unknowns, set by balance_boosts before each step; the step keeps
       // to the other directions. Its boost part is Newton's estimate along the nearly singular directions, poor
-      // after the balancing (0.1 to 5 on bunny00's finest level, where it cost 15 steps instead of 6).
-      if(boost_aim == Boost_aim::ROOT)
+      // after the balancing (0.1 to 5 on bunny00's finest level, where it cost 15 steps instead of 6). But where
+      // the balancing found no root of g near the map (its Newton steps on the boosts wandered by up to the cap each,
+      // |g| up and down: the rest of the map's error decides g there), the step's own boost part is the better
+      // estimate, as it accounts for how the other directions respond; it is applied, at most
+      // Solver_tuning::boost_max_step long (Solver_tuning::boost_step_part_where_unsettled; positive weights only;
+      // the manual's Method section, multilevel item).
+      const bool boost_part_applies =
+          !boosts_settled && positive_weights && tuning.boost_step_part_where_unsettled;
+      if(boost_aim == Boost_aim::ROOT && !boost_part_applies)
         boost = Vector3();
+      else if(boost_aim == Boost_aim::ROOT && length(boost) > tuning.boost_max_step)
+        boost = boost * (tuning.boost_max_step / length(boost));
       double trial_merit = 0.;
       double merit_to_lower = merit;
       auto line_search = [&]() {
