@@ -478,8 +478,7 @@ private:
     coarse_options.admissible_weights = false;
     coarse_options.hold_weights = false;
     coarse_options.iterations.tuning.multilevel_coarsening_ratio = ratio;
-    coarse_options.iterations.tolerance =
-        std::min(coarse_options.iterations.tolerance, m_options.iterations.tuning.multilevel_coarse_tolerance);
+    coarse_options.iterations.tolerance = m_options.iterations.tuning.multilevel_coarse_tolerance;
     const Result coarse = Sphere_mapper(coarsening.coarse, coarse_system, coarse_options, m_solver).map(coarse_x);
     if(coarse.status == Error_code::CANCELLED && coarse_x.size() == coarse_system.number_of_vertices)
     {
@@ -818,8 +817,7 @@ private:
     if(coarse_level)
     {
       uniform_options.coarse_level = true;
-      uniform_options.iterations.tolerance = std::min(uniform_options.iterations.tolerance,
-                                                      m_options.iterations.tuning.multilevel_coarse_tolerance);
+      uniform_options.iterations.tolerance = m_options.iterations.tuning.multilevel_coarse_tolerance;
     }
     const Result uniform_result = Sphere_mapper(mesh, uniform, uniform_options, m_solver).map(y);
     // A cancel there (the progress callback, the command line's SIGTERM) is this call's cancel.
