@@ -380,7 +380,8 @@ inline double conformal_distortion(const std::vector<std::array<int, 3>>& triang
 // step on the same level (face_energy_at_corner: a move needs its corner's block only), and stop once a sweep lowers
 // F by at least `stall` times what the one before did (what is left is smooth, which Gauss-Seidel removes slowly and
 // Newton's steps do not), after `max_sweeps`, or at the time budget or a cancel (which the minimization that follows
-// reports). Returns the sweeps.
+// reports). Then passes over the vertices still far from stationary (stationarity above 1) and their neighbours only,
+// at most `max_sweeps` of them (see below). Returns the sweeps (the passes not counted).
 inline int smooth_conformal_distortion(const std::vector<std::array<int, 3>>& triangles,
                                        const std::vector<Vector3>& points, std::vector<Vector3>& x, int max_sweeps,
                                        double stall, const Iteration_options& options, const CGAL::Real_timer& clock)
