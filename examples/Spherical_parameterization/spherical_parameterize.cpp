@@ -109,20 +109,26 @@ void print_usage(std::ostream& out)
          "\n"
          "Method:\n"
          "  -w, --weights W       uniform (default; Tutte weights, covered by the theory, most robust),\n"
-         "                        cotangent (angle preserving; may be negative, may not converge),\n"
-         "                        mean_value (angle preserving; not symmetric: a least-squares solution)\n"
+         "                        cotangent (angle preserving; may be negative: where their balanced map is\n"
+         "                        not bijective or not found, the bijective map of least conformal distortion),\n"
+         "                        mean_value (angle preserving; not symmetric, no balanced map in general: the\n"
+         "                        bijective map of least conformal distortion; see --least-distortion)\n"
          "      --admissible-weights  solve with the closest symmetric positive weights instead (the mean of\n"
          "                        w_ij and w_ji, those below 1% of the local mean raised to it): the theory's\n"
          "                        case, for cotangent and mean_value weights that fail\n"
          "      --hold-weights    cotangent weights whose balanced maps, followed from Tutte's weights, end\n"
          "                        before them: hold the weights where that path ends and go on (the map is\n"
          "                        balanced for the held weights: counted in the output; experimental)\n"
-         "      --least-distortion  where the map of the weights given ends unbalanced or not bijective\n"
-         "                        (cotangent; mean_value always: its least-squares map is not balanced, and\n"
-         "                        its iterations are skipped): return the bijective map of least conformal\n"
-         "                        distortion instead, success when that minimum is stationary; it replaces\n"
-         "                        cotangent weights' last resort, the cautious Newton, unless --hold-weights\n"
-         "                        is given too (experimental; not with --criterion paper)\n"
+         "      --least-distortion  (default with cotangent and mean_value weights, unless\n"
+         "                        --admissible-weights) where the map of the weights given ends unbalanced or\n"
+         "                        not bijective (cotangent; mean_value always: its least-squares map is not\n"
+         "                        balanced, and its iterations are skipped): return the bijective map of least\n"
+         "                        conformal distortion instead, success when that minimum is stationary; it\n"
+         "                        replaces cotangent weights' slow ways to their balanced map (a retry of the\n"
+         "                        levels, the two disks, the cautious Newton) unless --hold-weights is given\n"
+         "                        too (not with --criterion paper)\n"
+         "      --no-least-distortion  return the weights' own map only (NOT_CONVERGED where it is not\n"
+         "                        balanced; mean_value: the least-squares map, stationary or not)\n"
          "  -t, --tolerance T     stop when every imbalance e_i <= T (default 1e-6); mean_value weights, which\n"
          "                        have no exact solution: when their least-squares problem is stationary to T\n"
          "      --gauss-seidel-sweeps N  cap of stage 2, the paper's projected Gauss-Seidel (default: the\n"
@@ -768,6 +774,7 @@ const Option options[] = {
     {"", "--admissible-weights", nullptr},
     {"", "--hold-weights", nullptr},
     {"", "--least-distortion", nullptr},
+    {"", "--no-least-distortion", nullptr},
     {"-q", "--quiet", nullptr},
     {"", "--json", nullptr},
     {"-h", "--help", nullptr},
@@ -838,7 +845,10 @@ struct Settings
   int seed = 0;
   bool quiet = false, json = false, backtracking = true, sparse_lu = false, admissible = false, float64 = false;
   bool hold = false; // --hold-weights
-  bool least_distortion = false; // --least-distortion
+  // --least-distortion, --no-least-distortion; otherwise the library's default: on for cotangent and mean_value
+  // weights (not made admissible), off for the others.
+  int least_distortion_flag = -1;
+  bool least_distortion = false; // the setting in effect
   bool overwrite = false; // map again even when the output is already a certified answer to the same request
   bool multilevel = true, verbose = false;
   double radius = 1.;
@@ -977,7 +987,9 @@ Settings parse_arguments(int argc, char** argv)
     else if(canonical == "--hold-weights")
       settings.hold = true;
     else if(canonical == "--least-distortion")
-      settings.least_distortion = true;
+      settings.least_distortion_flag = 1;
+    else if(canonical == "--no-least-distortion")
+      settings.least_distortion_flag = 0;
     else if(canonical == "--quiet")
       settings.quiet = true;
     else if(canonical == "--json")
@@ -985,6 +997,11 @@ Settings parse_arguments(int argc, char** argv)
   }
   if(settings.input.empty())
     usage_error("no input mesh given");
+  settings.least_distortion =
+      settings.least_distortion_flag >= 0
+          ? settings.least_distortion_flag == 1
+          : !settings.admissible
+                && (settings.weighting == SP::Weighting::COTANGENT || settings.weighting == SP::Weighting::MEAN_VALUE);
   return settings;
 }
 

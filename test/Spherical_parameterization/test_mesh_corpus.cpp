@@ -149,7 +149,7 @@ int main(int argc, char** argv)
   if(argc < 3)
   {
     std::cerr << "usage: test_mesh_corpus MESH "
-                 "uniform|cotangent|mean_value[_admissible|_held][_loop1|_loop2][_morton_order] [--known-failure REASON]\n";
+                 "uniform|cotangent|mean_value[_admissible|_held|_balanced][_loop1|_loop2][_morton_order] [--known-failure REASON]\n";
     return 2;
   }
   const std::string path = argv[1], weights = argv[2];
@@ -174,9 +174,11 @@ int main(int argc, char** argv)
   const bool admissible = strip(base, "_admissible");
   // "_held": hold_weights(true), where the path of balanced maps from Tutte's weights ends (cotangent).
   const bool held = strip(base, "_held");
-  // "_least_distortion": least_distortion(true), the bijective map of least conformal distortion where the weights'
-  // map ends unconverged (cotangent, mean value).
-  const bool least_distortion = strip(base, "_least_distortion");
+  // "_balanced": least_distortion(false), the weights' own map only. Without it (and without "_held", which tests the
+  // held continuation alone), cotangent and mean-value weights run as the library's default does: where their map
+  // ends unconverged, the bijective map of least conformal distortion (least_distortion(true)).
+  const bool balanced_only = strip(base, "_balanced");
+  const bool least_distortion = !balanced_only && !held && !admissible && (base == "cotangent" || base == "mean_value");
   SP::Weighting weighting = SP::Weighting::UNIFORM;
   if(base == "cotangent")
     weighting = SP::Weighting::COTANGENT;

@@ -49,8 +49,16 @@ check(not sp.certify(Y, F)["bijective"], "certify rejects a map with two vertice
 distortion = sp.measure_distortion(V, X, F)
 check(0 < distortion["mean_angle_error_degrees"] < 30 and distortion["log_area_ratio_stddev"] > 0, "distortion: %s" % distortion)
 check(info["distortion"] == distortion, "map_to_sphere's distortion is measure_distortion's: %s" % info["distortion"])
+# Cotangent and mean-value weights: by default, where their own map is not balanced, the bijective map of least
+# conformal distortion (stationary: OK); least_distortion=False keeps the weights' own map.
 X2, info2 = sp.map_to_sphere(V, F, weights="cotangent")
-check(info2["weights"] == "cotangent" and info2["status"] in ("OK", "NOT_CONVERGED"), "cotangent weights: %s" % info2["status"])
+check(info2["weights"] == "cotangent" and info2["status"] == "OK" and info2["bijective"], "cotangent weights: %s" % info2["status"])
+Xmv, infomv = sp.map_to_sphere(V, F, weights="mean_value")
+check(infomv["status"] == "OK" and infomv["least_distortion_map"] is True and infomv["bijective"],
+      "mean-value weights, the default: %s, least distortion map %s" % (infomv["status"], infomv["least_distortion_map"]))
+Xmv0, infomv0 = sp.map_to_sphere(V, F, weights="mean_value", least_distortion=False)
+check(infomv0["least_distortion_map"] is False and infomv0["max_stationarity"] is not None,
+      "mean-value weights, least_distortion=False: %s" % infomv0["status"])
 # FreeSurfer surfaces through the same reader.
 V3, F3 = sp.read_surface(os.path.join(shared, "formats", "lh.fsavg5.pial"))
 check(V3.shape == (10242, 3), "read_surface FreeSurfer: %s" % (V3.shape,))

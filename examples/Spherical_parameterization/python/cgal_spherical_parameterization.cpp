@@ -176,7 +176,7 @@ py::dict result_dict(const SP::Result& r, const std::string& weights, const std:
 
 py::tuple map_to_sphere(const Vertices& V, const Faces& F, const std::string& weights, double tolerance,
                         const std::string& criterion, py::object max_seconds, bool admissible_weights,
-                        py::object progress, bool hold_weights, bool least_distortion)
+                        py::object progress, bool hold_weights, py::object least_distortion)
 {
   SP::Weighting weighting;
   if(weights == "uniform")
@@ -193,6 +193,11 @@ py::tuple map_to_sphere(const Vertices& V, const Faces& F, const std::string& we
   if(!(tolerance > 0.))
     throw py::value_error("INVALID_ARGUMENT: tolerance must be positive");
   const double budget = max_seconds.is_none() ? -1. : max_seconds.cast<double>();
+  // None: the library's default (on for cotangent and mean-value weights not made admissible).
+  const bool minimize_distortion =
+      least_distortion.is_none()
+          ? !admissible_weights && (weighting == SP::Weighting::COTANGENT || weighting == SP::Weighting::MEAN_VALUE)
+          : least_distortion.cast<bool>();
   const Mesh mesh = checked_mesh(V, F);
 
   // Called without the GIL: takes it at most ten times a second, for the user's callable and for Ctrl-C.
@@ -235,7 +240,7 @@ py::tuple map_to_sphere(const Vertices& V, const Faces& F, const std::string& we
         SP::parameters::combine(
             SP::parameters::weighting(weighting), SP::parameters::tolerance(tolerance),
             SP::parameters::max_seconds(budget), SP::parameters::admissible_weights(admissible_weights),
-            SP::parameters::hold_weights(hold_weights), SP::parameters::least_distortion(least_distortion),
+            SP::parameters::hold_weights(hold_weights), SP::parameters::least_distortion(minimize_distortion),
             SP::parameters::progress_callback(report),
             SP::parameters::convergence_test(criterion == "paper" ? SP::Convergence_test::PAPER_RESIDUAL
                                                                   : SP::Convergence_test::IMBALANCE)));
@@ -357,7 +362,7 @@ PYBIND11_MODULE(cgal_spherical_parameterization, m)
       "map_to_sphere", &map_to_sphere, py::arg("V"), py::arg("F"), py::arg("weights") = "uniform",
       py::arg("tolerance") = 1e-6, py::arg("criterion") = "imbalance", py::arg("max_seconds") = py::none(),
       py::arg("admissible_weights") = false, py::arg("progress") = py::none(), py::arg("hold_weights") = false,
-      py::arg("least_distortion") = false,
+      py::arg("least_distortion") = py::none(),
       "Maps the mesh (V: (n,3) float64, F: (m,3) int) onto the unit sphere. Returns (X, info): X (n,3) float64 on the\n"
       "unit sphere in V's vertex order, info a dict with the command line's JSON figures ('status', 'success',\n"
       "'max_imbalance', 'flipped_faces', 'bijective', 'distortion', 'stages', ...). A map that is not converged or\n"
@@ -365,10 +370,11 @@ PYBIND11_MODULE(cgal_spherical_parameterization, m)
       "iteration, residual, non_positive_faces, seconds) is called at most ten times a second; returning False\n"
       "stops the run. Ctrl-C raises KeyboardInterrupt. hold_weights: cotangent weights whose balanced maps from\n"
       "Tutte's weights end before them are held where that path ends (info['held_weight_vertices']; experimental).\n"
-      "least_distortion: where the weights' map ends unconverged, and always for mean-value weights (whose\n"
-      "least-squares map is not balanced; their iterations are skipped), the bijective map of least conformal\n"
-      "distortion instead (info['least_distortion_map']; info['balanced_map_folded']: the weights' balanced map\n"
-      "reached was folded, and the other ways to one were skipped; experimental).");
+      "least_distortion (default None: on for cotangent and mean_value weights unless admissible_weights): where\n"
+      "the weights' map ends unconverged, and always for mean-value weights (whose least-squares map is not\n"
+      "balanced; their iterations are skipped), the bijective map of least conformal distortion instead\n"
+      "(info['least_distortion_map']; info['balanced_map_folded']: the weights' balanced map reached was folded,\n"
+      "and the other ways to one were skipped); False: the weights' own map only.");
   m.def("certify", &certify, py::arg("X"), py::arg("F"),
         "Certifies a map onto the sphere with exact predicates: dict(bijective, flipped_faces, total_signed_area, "
         "faces).");

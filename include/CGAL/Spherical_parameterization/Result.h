@@ -101,10 +101,10 @@ struct Result
   /// The largest imbalance under the weights requested when weights were held (`held_weight_vertices` > 0); -1
   /// otherwise (then `max_imbalance` is under the weights requested).
   double requested_weights_max_imbalance = -1.;
-  /// With the named parameter `least_distortion`: the map returned is the bijective map of least conformal distortion
-  /// (not a balanced map of the weights given, whose figures `max_imbalance` and the others still report), because
-  /// those weights' map ended unbalanced or not bijective (their last resort, the cautious Newton, is then left out,
-  /// unless `hold_weights` was given too). Then the convergence test is the stationarity of that
+  /// With the named parameter `least_distortion` (the default for cotangent and mean-value weights): the map returned
+  /// is the bijective map of least conformal distortion (not a balanced map of the weights given, whose figures
+  /// `max_imbalance` and the others still report), because those weights' map ended unbalanced or not bijective
+  /// (their slow ways, among them the cautious Newton, are then left out, unless `hold_weights` was given too). Then the convergence test is the stationarity of that
   /// minimum: `max_distortion_stationarity` at most the tolerance (or its rounding floor) at every vertex.
   bool least_distortion_map = false;
   /// With the named parameter `least_distortion` (and without `hold_weights`): Newton's full steps reached a map

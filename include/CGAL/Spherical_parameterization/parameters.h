@@ -155,17 +155,21 @@ CGAL_SPHERICAL_PARAMETERIZATION_NAMED_PARAMETER(multilevel)
 /// (`Result::held_weight_vertices`, `Result::held_weight_parameter`); default `false`: such maps end
 /// `Error_code::NOT_CONVERGED`. An experimental option: see the manual's Method section for what it costs in shape.
 CGAL_SPHERICAL_PARAMETERIZATION_NAMED_PARAMETER(hold_weights)
-/// `true`: where the map of the weights given ends unbalanced or not bijective (cotangent and mean-value weights
-/// whose balanced map folds or does not exist), return instead the bijective map of least conformal distortion: a
-/// minimum, over bijective maps, of the conformal distortion of the flat triangles through the sphere points against
-/// the 3D triangles, started from the map reached or, of less distortion, a map minimized on coarser levels first
-/// (meshes of 4,000 vertices or more) or Tutte's map. With weights other than Tutte's and without `hold_weights`, this
-/// minimization replaces their last resort (the cautious Newton). With weights other than Tutte's and `max_seconds`,
-/// the ways to the weights' balanced map get half the budget, the minimization the rest; where Newton's full steps
-/// reach a balanced map of those weights that is folded, the other ways are skipped (`Result::balanced_map_folded`).
-/// `Result::least_distortion_map` says so, and the status is `Error_code::OK` when that minimum is stationary
-/// (`Result::max_distortion_stationarity`) and the map certified. Only with `Convergence_test::IMBALANCE`.
-/// Default `false`. An experimental option: see the manual's Method section for what it gives and costs.
+/// `true` (the default with `Weighting::COTANGENT` and `Weighting::MEAN_VALUE`, unless `admissible_weights`): where
+/// the map of the weights given ends unbalanced or not bijective (cotangent weights whose balanced map folds or is
+/// not found; mean-value weights always, which have no balanced map in general: their least-squares iterations are
+/// skipped), return instead the bijective map of least conformal distortion: a minimum, over bijective maps, of the
+/// conformal distortion of the flat triangles through the sphere points against the 3D triangles, started from the
+/// map reached or, of less distortion, a map minimized on coarser levels first (meshes of 4,000 vertices or more) or
+/// Tutte's map. With weights other than Tutte's and without `hold_weights`, this minimization replaces the slow ways
+/// to their balanced map: the retry of a failed multilevel start, the two-disk path after it, the cautious Newton.
+/// With weights other than Tutte's and `max_seconds`, the ways to the weights' balanced map get half the budget, the
+/// minimization the rest; where Newton's full steps reach a balanced map of those weights that is folded, the other
+/// ways are skipped (`Result::balanced_map_folded`). `Result::least_distortion_map` says so, and the status is
+/// `Error_code::OK` when that minimum is stationary (`Result::max_distortion_stationarity`) and the map certified.
+/// Only with `Convergence_test::IMBALANCE`. `false` (the default for uniform weights, the user's and admissible
+/// ones): the weights' own map only (`Error_code::NOT_CONVERGED` where it is not balanced). See the manual's Method
+/// section for what the minimization gives and costs.
 CGAL_SPHERICAL_PARAMETERIZATION_NAMED_PARAMETER(least_distortion)
 /// Seed of METIS' randomized separator (default 0): the same seed gives bitwise identical output.
 CGAL_SPHERICAL_PARAMETERIZATION_NAMED_PARAMETER(metis_seed)

@@ -135,9 +135,10 @@ using Sparse_LU_disk_solver_traits = internal::Sparse_LU_solver_traits;
 ///                           stationary minimum of the flat triangles' conformal distortion over bijective maps),
 ///                           `Result::least_distortion_map` says so (`Result::balanced_map_folded`: the
 ///                           weights' balanced map reached was folded, the other ways to one were skipped);
-///                           experimental}
+///                           `false`: the weights' own map only}
 ///     \cgalParamType{`bool`}
-///     \cgalParamDefault{`false`}
+///     \cgalParamDefault{`true` for `Weighting::COTANGENT` and `Weighting::MEAN_VALUE` (unless
+///                       `admissible_weights`), `false` otherwise}
 ///   \cgalParamNEnd
 ///   \cgalParamNBegin{multilevel}
 ///     \cgalParamDescription{with the global solver, on meshes of 20,000 vertices or more with uniform weights and of
@@ -380,7 +381,11 @@ Result spherical_parameterize(const TriangleMesh& tm, VertexSphereMap vsm,
     options.weighting = Weighting::USER_MAP; // the disks use the same (admissible) weights
   options.admissible_weights = admissible;
   options.hold_weights = choose_parameter(get_parameter(np, internal_np::hold_weights), false);
-  options.least_distortion = choose_parameter(get_parameter(np, internal_np::least_distortion), false);
+  // On by default for the shape-preserving weights, whose balanced map may fold or not exist; not for weights the user
+  // chose (their own, or made admissible), whose balanced map is what was asked for.
+  const bool shape_weights =
+      !admissible && (options.weighting == Weighting::COTANGENT || options.weighting == Weighting::MEAN_VALUE);
+  options.least_distortion = choose_parameter(get_parameter(np, internal_np::least_distortion), shape_weights);
 
   using Solver = typename CGAL::internal_np::Lookup_named_param_def<CGAL::internal_np::sparse_linear_solver_t,
                                                                     NamedParameters, Default_disk_solver_traits>::type;

@@ -192,10 +192,12 @@ public:
         m_options.iterations.max_seconds = budget;
         return m_result;
       }
-      if(!m_system.symmetric && m_iteration_options.least_distortion_follows)
+      if(m_iteration_options.least_distortion_follows && (!m_system.symmetric || m_multilevel_tried))
       {
         // Non-symmetric weights have no balanced map, and the minimization replaces their least-squares map (see
         // least_distortion()): its iterations are not run (bunny00's 12.5 s of 23.6 s with mean-value weights).
+        // Where the multilevel start failed, the minimization follows at once too: the two-disk guess is only the
+        // bijective map it starts from if its own start is not better (multilevel_start).
       }
       else if(partition_retries_apply())
       {
@@ -442,7 +444,11 @@ private:
       return true;
     const bool budget_left =
         !(m_options.iterations.max_seconds >= 0. && m_options.call_clock.time() >= m_options.iterations.max_seconds);
+    // With the minimization following (least_distortion), no retry either: it ends with a bijective map of least
+    // distortion whether or not the weights' balanced map exists, and the retry and the two-disk path after it, which
+    // look for one, took most of the time where they ran (CGAL's ... ).
     if(m_options.coarse_level || m_cancelled || m_newton.out_of_time || !budget_left || m_balanced_map_folded
+       || m_iteration_options.least_distortion_follows
        || !(tuning.multilevel_retry_coarsening_ratio > tuning.multilevel_coarsening_ratio))
       return false;
     if(m_options.verbose)
@@ -988,7 +994,7 @@ private:
       note << " [the bijective map of least conformal distortion (least_distortion), not a balanced map of the "
            << "weights given (max imbalance " << m_result.max_imbalance << "): distortion " << m_result.distortion_energy
            << ", max stationarity " << m_result.max_distortion_stationarity << " after "
-           << m_result.least_distortion_steps << " Newton steps]";
+           << m_result.least_distortion_steps << " Newton steps, " << m_result.flipped_faces << " flipped faces]";
       m_result.message += note.str();
     }
     if(!m_system.symmetric && m_iteration_options.convergence_test == Convergence_test::IMBALANCE
