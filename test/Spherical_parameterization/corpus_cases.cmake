@@ -112,6 +112,11 @@ foreach(arms ${SP_THIN_ARMS})
   endif()
   if(EXISTS ${mesh})
     sp_add_corpus_case(${mesh} uniform)
+    # Cotangent and mean-value weights (the default: the minimization of the distortion where their map fails) take
+    # 5 to 30 s on these: slow cases.
+    list(APPEND SP_SLOW_CASES thin_arms_${arms}.cotangent thin_arms_${arms}.mean_value)
+    sp_add_corpus_case(${mesh} cotangent)
+    sp_add_corpus_case(${mesh} mean_value)
   else()
     # A mesh that could not be made (no NumPy) fails the run rather than shrinking it.
     message(WARNING "could not make ${mesh} (needs /usr/bin/python3 with NumPy: scripts/setup.sh)")
