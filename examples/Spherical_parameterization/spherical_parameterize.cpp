@@ -997,11 +997,9 @@ Settings parse_arguments(int argc, char** argv)
   }
   if(settings.input.empty())
     usage_error("no input mesh given");
-  settings.least_distortion =
-      settings.least_distortion_flag >= 0
-          ? settings.least_distortion_flag == 1
-          : !settings.admissible
-                && (settings.weighting == SP::Weighting::COTANGENT || settings.weighting == SP::Weighting::MEAN_VALUE);
+  settings.least_distortion = settings.least_distortion_flag >= 0
+                                  ? settings.least_distortion_flag == 1
+                                  : SP::least_distortion_by_default(settings.weighting, settings.admissible);
   return settings;
 }
 

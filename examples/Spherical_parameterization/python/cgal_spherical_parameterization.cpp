@@ -194,10 +194,9 @@ py::tuple map_to_sphere(const Vertices& V, const Faces& F, const std::string& we
     throw py::value_error("INVALID_ARGUMENT: tolerance must be positive");
   const double budget = max_seconds.is_none() ? -1. : max_seconds.cast<double>();
   // None: the library's default (on for cotangent and mean-value weights not made admissible).
-  const bool minimize_distortion =
-      least_distortion.is_none()
-          ? !admissible_weights && (weighting == SP::Weighting::COTANGENT || weighting == SP::Weighting::MEAN_VALUE)
-          : least_distortion.cast<bool>();
+  const bool minimize_distortion = least_distortion.is_none()
+                                       ? SP::least_distortion_by_default(weighting, admissible_weights)
+                                       : least_distortion.cast<bool>();
   const Mesh mesh = checked_mesh(V, F);
 
   // Called without the GIL: takes it at most ten times a second, for the user's callable and for Ctrl-C.

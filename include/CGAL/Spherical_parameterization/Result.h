@@ -104,8 +104,9 @@ struct Result
   /// With the named parameter `least_distortion` (the default for cotangent and mean-value weights): the map returned
   /// is the bijective map of least conformal distortion (not a balanced map of the weights given, whose figures
   /// `max_imbalance` and the others still report), because those weights' map ended unbalanced or not bijective
-  /// (their slow ways, among them the cautious Newton, are then left out, unless `hold_weights` was given too). Then the convergence test is the stationarity of that
-  /// minimum: `max_distortion_stationarity` at most the tolerance (or its rounding floor) at every vertex.
+  /// (their slow ways, among them the cautious Newton, are then left out, unless `hold_weights` was given too). Then
+  /// the convergence test is the stationarity of that minimum: `max_distortion_stationarity` at most the tolerance
+  /// (or its rounding floor) at every vertex.
   bool least_distortion_map = false;
   /// With the named parameter `least_distortion` (and without `hold_weights`): Newton's full steps reached a map
   /// balanced for the weights given (symmetric weights other than Tutte's: cotangent, admissible, the user's) that has

@@ -94,6 +94,15 @@ enum least_distortion_t
 };
 } // namespace internal_np
 
+/// \ingroup PkgSphericalParameterizationRef
+/// The default of the named parameter `least_distortion`: on for the shape-preserving weights (cotangent, mean value),
+/// whose balanced map may fold or not exist; off for Tutte's weights, the user's, and weights made admissible, whose
+/// balanced map is what was asked for. The command line and the Python module resolve their default with it.
+inline bool least_distortion_by_default(Weighting weighting, bool admissible_weights)
+{
+  return !admissible_weights && (weighting == Weighting::COTANGENT || weighting == Weighting::MEAN_VALUE);
+}
+
 namespace parameters {
 
 using CGAL::parameters::choose_parameter;

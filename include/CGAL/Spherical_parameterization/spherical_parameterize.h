@@ -381,11 +381,8 @@ Result spherical_parameterize(const TriangleMesh& tm, VertexSphereMap vsm,
     options.weighting = Weighting::USER_MAP; // the disks use the same (admissible) weights
   options.admissible_weights = admissible;
   options.hold_weights = choose_parameter(get_parameter(np, internal_np::hold_weights), false);
-  // On by default for the shape-preserving weights, whose balanced map may fold or not exist; not for weights the user
-  // chose (their own, or made admissible), whose balanced map is what was asked for.
-  const bool shape_weights =
-      !admissible && (options.weighting == Weighting::COTANGENT || options.weighting == Weighting::MEAN_VALUE);
-  options.least_distortion = choose_parameter(get_parameter(np, internal_np::least_distortion), shape_weights);
+  options.least_distortion = choose_parameter(get_parameter(np, internal_np::least_distortion),
+                                              least_distortion_by_default(options.weighting, admissible));
 
   using Solver = typename CGAL::internal_np::Lookup_named_param_def<CGAL::internal_np::sparse_linear_solver_t,
                                                                     NamedParameters, Default_disk_solver_traits>::type;

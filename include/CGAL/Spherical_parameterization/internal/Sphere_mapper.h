@@ -446,7 +446,8 @@ private:
         !(m_options.iterations.max_seconds >= 0. && m_options.call_clock.time() >= m_options.iterations.max_seconds);
     // With the minimization following (least_distortion), no retry either: it ends with a bijective map of least
     // distortion whether or not the weights' balanced map exists, and the retry and the two-disk path after it, which
-    // look for one, took most of the time where they ran (CGAL's ... ).
+    // look for one, took most of the time where they ran (oded_scorpion with cotangent weights: 57 of its 70 s;
+    // c3d_cheburashka 19 of 21 s; the manual's Method section).
     if(m_options.coarse_level || m_cancelled || m_newton.out_of_time || !budget_left || m_balanced_map_folded
        || m_iteration_options.least_distortion_follows
        || !(tuning.multilevel_retry_coarsening_ratio > tuning.multilevel_coarsening_ratio))
