@@ -21,6 +21,7 @@
 #include <CGAL/Spherical_parameterization/internal/Sphere_system.h>
 #include <CGAL/Spherical_parameterization/internal/Vector3.h>
 #include <CGAL/Spherical_parameterization/internal/deferred_stop_signals.h>
+#include <CGAL/Spherical_parameterization/internal/stage3/supernodal_ldlt.h>
 
 #include <CGAL/assertions.h>
 
@@ -42,6 +43,10 @@ namespace CGAL {
 namespace Spherical_parameterization {
 namespace internal {
 
+// From this many vertices the unknowns are ordered by nested dissection and factorized by supernodes (the large
+// meshes, where the factorization is most of a step's time); below, by minimum degree and column by column.
+constexpr std::size_t nested_dissection_min_vertices = 20000;
+
 // A fill-reducing order of the vertices, computed on the vertex graph (a quarter of the unknowns' graph):
 // approximate minimum degree for small meshes, where it is the faster to compute, METIS nested dissection for
 // large ones, where its smaller fill pays. rank[i] is the position of vertex i.
@@ -52,7 +57,7 @@ inline std::vector<int> vertex_elimination_rank(const Sphere_system& system)
   std::iota(rank.begin(), rank.end(), 0);
   if(n < 3)
     return rank;
-  if(n < 20000)
+  if(n < nested_dissection_min_vertices)
   {
     Eigen::SparseMatrix<double> pattern(static_cast<Eigen::Index>(n), static_cast<Eigen::Index>(n));
     std::vector<Eigen::Triplet<double>> entries;
@@ -232,6 +237,8 @@ public:
       fix_unknown(row.vertex, row.component);
     m_x = &x;
 
+    if(m_system.number_of_vertices >= nested_dissection_min_vertices)
+      return m_supernodal.factorize(m_matrix);
     if(!m_analyzed)
     {
       m_ldlt.analyzePattern(m_matrix);
@@ -255,8 +262,8 @@ public:
   bool solve(std::vector<Vector3>& step, bool consistent_rotations = true)
   {
     const std::size_t n = m_system.number_of_vertices;
-    Eigen::VectorXd solution = m_ldlt.solve(m_rhs);
-    if(m_ldlt.info() != Eigen::Success || !solution.allFinite())
+    Eigen::VectorXd solution = m_rhs;
+    if(!solve_in_place(solution))
       return false;
     const std::size_t m = m_pinned_rows.size();
     if(consistent_rotations && m == 3 && m_x != nullptr)
@@ -283,7 +290,8 @@ public:
           field_rows[r] = field[unknown(m_pinned_rows[r].vertex, m_pinned_rows[r].component)];
           field[unknown(m_pinned_rows[r].vertex, m_pinned_rows[r].component)] = 0.;
         }
-        rotation_solutions.col(k) = m_ldlt.solve(field);
+        solve_in_place(field);
+        rotation_solutions.col(k) = field;
         for(std::size_t r = 0; r < 3; ++r)
           coupling(static_cast<Eigen::Index>(r), k) =
               dropped_equation_residual(r, rotation_solutions.col(k), field_rows[r]);
@@ -299,6 +307,20 @@ public:
   }
 
 private:
+  // x = A^-1 x with the factorization of the last factorize(); false if the result is not finite.
+  bool solve_in_place(Eigen::VectorXd& x) const
+  {
+    if(m_system.number_of_vertices >= nested_dissection_min_vertices)
+      m_supernodal.solve_in_place(x);
+    else
+    {
+      x = m_ldlt.solve(x).eval();
+      if(m_ldlt.info() != Eigen::Success)
+        return false;
+    }
+    return x.allFinite();
+  }
+
   struct Pinned_row
   {
     std::size_t vertex;
@@ -410,6 +432,11 @@ private:
   const std::vector<Vector3>* m_x = nullptr; // the positions of the last factorize()
   bool m_analyzed = false;
   Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>, Eigen::Upper, Eigen::NaturalOrdering<int>> m_ldlt;
+  // From nested_dissection_min_vertices, in the order of m_rank: a cortex's factorized step (bigbrain, 163,842
+  // vertices, cotangent weights) took about 10 s with the simplicial factorization, 2.4 s by supernodes. Below, the
+  // simplicial one: the same steps up to rounding, but with negative weights the small levels' paths turn on it
+  // (the manual's Method section).
+  Supernodal_ldlt m_supernodal{false, Eigen::Upper};
 };
 
 } // namespace internal
