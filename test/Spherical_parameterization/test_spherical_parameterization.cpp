@@ -1150,6 +1150,64 @@ TEST(PartitionRetry, AnotherPartitionBalancesWhereTheFirstFails)
   EXPECT_EQ(first.partition_seed, 0);
 }
 
+// A cube whose faces are grids of k x k squares, each cut into two triangles: rows of collinear vertices, as
+// marching cubes' surfaces have.
+SPI::Mesh_arrays grid_cube(int k)
+{
+  SPI::Mesh_arrays arrays;
+  std::map<std::array<int, 3>, int> index;
+  auto vertex = [&](std::array<int, 3> c) {
+    auto it = index.find(c);
+    if(it != index.end())
+      return it->second;
+    const int i = static_cast<int>(arrays.points.size());
+    arrays.points.push_back(SPI::Vector3(c[0], c[1], c[2]));
+    index.emplace(c, i);
+    return i;
+  };
+  for(int axis = 0; axis < 3; ++axis)
+    for(int side : {0, k})
+      for(int i = 0; i < k; ++i)
+        for(int j = 0; j < k; ++j)
+        {
+          // (i, j) along the axes b = axis + 1 and c = axis + 2: counter-clockwise seen from +axis (e_b x e_c).
+          auto at = [&](int u, int v) {
+            std::array<int, 3> c{};
+            c[static_cast<std::size_t>(axis)] = side;
+            c[static_cast<std::size_t>((axis + 1) % 3)] = u;
+            c[static_cast<std::size_t>((axis + 2) % 3)] = v;
+            return vertex(c);
+          };
+          std::array<int, 4> q{at(i, j), at(i + 1, j), at(i + 1, j + 1), at(i, j + 1)};
+          if(side == 0)
+            std::swap(q[1], q[3]); // outward is -axis there
+          for(const std::array<int, 3>& t : {std::array<int, 3>{q[0], q[1], q[2]}, std::array<int, 3>{q[0], q[2], q[3]}})
+          {
+            arrays.triangles.push_back(t);
+            arrays.polygons.push_back({t[0], t[1], t[2]});
+          }
+        }
+  return arrays;
+}
+
+// The collapses never leave a coarse face flat in 3D (the least-distortion levels need every face's shape): on a
+// cube of grids, where most collapses along a grid line would.
+TEST(MeshCoarsening, NoCoarseFaceIsFlatIn3D)
+{
+  const SPI::Mesh_arrays cube = grid_cube(12);
+  ASSERT_TRUE(SPI::check_mesh_arrays(cube));
+  const SPI::Coarsening coarsening = SPI::coarsen_mesh(cube, cube.points.size() / 4);
+  EXPECT_LT(coarsening.coarse.points.size(), cube.points.size() / 2) << "the collapses stopped early";
+  std::size_t flat = 0;
+  for(const auto& t : coarsening.coarse.triangles)
+  {
+    const std::vector<SPI::Vector3>& p = coarsening.coarse.points;
+    flat += SPI::coarsening_detail::degenerate_in_3d(p[static_cast<std::size_t>(t[0])], p[static_cast<std::size_t>(t[1])],
+                                                     p[static_cast<std::size_t>(t[2])]);
+  }
+  EXPECT_EQ(flat, 0u);
+}
+
 // Inserted at the centre of its ring's kernel (the least-distortion multilevel start), every removed vertex finds a
 // positive fan: the map carried back is bijective.
 TEST(MeshCoarsening, KernelCentreInsertionKeepsTheMapBijective)

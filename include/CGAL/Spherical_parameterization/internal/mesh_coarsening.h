@@ -99,6 +99,14 @@ inline void erase_value(std::vector<int>& values, int value)
   }
 }
 
+// A triangle whose doubled area is below 1e-12 times its longest edge squared: its corners are on a line up to
+// rounding.
+inline bool degenerate_in_3d(const Vector3& a, const Vector3& b, const Vector3& c)
+{
+  const double longest = (std::max)({squared_length(b - a), squared_length(c - b), squared_length(a - c)});
+  return !(length(cross(b - a, c - a)) > 1e-12 * longest);
+}
+
 } // namespace coarsening_detail
 
 // Collapses the mesh of `points` and `triangles` (closed, oriented, manifold, genus 0) down to about
@@ -165,6 +173,20 @@ inline Coarsening coarsen_mesh(const std::vector<Vector3>& points, const std::ve
             break;
         }
         if(!link)
+          continue;
+        // Nor one that leaves a face degenerate in 3D (its corners on a line, as marching cubes' grids give): the
+        // least-distortion levels keep each face's shape (its cotangents), and a flat face has none. On a
+        // marching-tetrahedra surface with thin arms, three such faces of the level of 8,039 vertices stopped the
+        // multilevel start of the minimization there (from Tutte's map instead: not stationary after 219 steps, 60
+        // s; through the levels: stationary after 188).
+        bool flat = false;
+        for(std::size_t m = 0; m < d && !flat; ++m)
+        {
+          const std::size_t a = static_cast<std::size_t>(ring[m]), b = static_cast<std::size_t>(ring[(m + 1) % d]);
+          if(a != v && b != v)
+            flat = degenerate_in_3d(points[v], points[a], points[b]);
+        }
+        if(flat)
           continue;
         const double edge = squared_length(points[v] - points[iu]);
         if(degree < best_degree || edge < best_length)
@@ -340,8 +362,16 @@ enum class Insertion
 // then about v): the least-distortion minimization (stage3/least_distortion.h) cannot start from a folded map, and a
 // face left barely positive by the mean makes later rings' kernels empty (CGAL's man: 2 of 3,280 vertices left folded
 // from a map of least distortion with the mean, none with the kernel's centre).
-inline std::size_t prolong(const Coarsening& coarsening, const std::vector<Vector3>& coarse_x, std::vector<Vector3>& x,
-                           Insertion insertion = Insertion::RING_MEAN)
+// `also_positive(p, q, r)`: a test each new face must pass too (the least-distortion start: the orientation its
+// energy is defined by, see multilevel_least_distortion.h).
+struct Any_positive_face
+{
+  bool operator()(const Vector3&, const Vector3&, const Vector3&) const { return true; }
+};
+
+template <typename Also_positive = Any_positive_face>
+std::size_t prolong(const Coarsening& coarsening, const std::vector<Vector3>& coarse_x, std::vector<Vector3>& x,
+                    Insertion insertion = Insertion::RING_MEAN, const Also_positive& also_positive = Also_positive())
 {
   const std::size_t n = coarsening.coarse_index.size();
   CGAL_precondition(coarse_x.size() == coarsening.coarse.points.size());
@@ -358,7 +388,7 @@ inline std::size_t prolong(const Coarsening& coarsening, const std::vector<Vecto
     auto at = [&](std::size_t m) -> const Vector3& { return x[static_cast<std::size_t>(ring[m % d])]; };
     auto positive_fan = [&](const Vector3& p) {
       for(std::size_t m = 0; m < d; ++m)
-        if(!is_positive(p, at(m), at(m + 1)))
+        if(!is_positive(p, at(m), at(m + 1)) || !also_positive(p, at(m), at(m + 1)))
           return false;
       return true;
     };

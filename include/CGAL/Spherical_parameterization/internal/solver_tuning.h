@@ -103,6 +103,7 @@ struct Solver_tuning
   // steps along directions flatter than it; with the boosts balanced apart and the gradient's digits kept, 1e-12
   // (the shift always added) takes CGAL's camel to its minimum in 45 steps, 490 with a floor of 1e-8; 1e-14 left
   // triceratops at stationarity 2.4e-6, where no step lowered F above its rounding (the manual's Method section).
+  // Lowered during a minimization only where it caps the steps (least_distortion.h, since 2026-12-02).
   double least_distortion_marquardt_floor = 1e-12;
   // Its boosts (balance_distortion_boosts): before the first step and after each one, at most this many Newton
   // iterations on the three boost parameters, while the decrease of F they predict exceeds this share of what the
