@@ -1191,7 +1191,7 @@ SPI::Mesh_arrays grid_cube(int k)
 }
 
 // The collapses never leave a coarse face flat in 3D (the least-distortion levels need every face's shape): on a
-// cube of grids, where most collapses along a grid line would.
+// cube of grids, where collapses along its grid lines would (16 flat coarse faces before the rule).
 TEST(MeshCoarsening, NoCoarseFaceIsFlatIn3D)
 {
   const SPI::Mesh_arrays cube = grid_cube(12);

@@ -629,8 +629,9 @@ inline Least_distortion_report minimize_conformal_distortion(const std::vector<s
   Supernodal_ldlt factorization; // supernodal: 3 to 4 times faster than Eigen's simplicial LDLT on these Hessians
   double marquardt = 1e-6;
   const double marquardt_floor = options.tuning.least_distortion_marquardt_floor;
-  // The floor and the shift always added (1e-12, against the rotations' null space) are both scaled by floor_factor,
+  // The floor and the shift always added (against the rotations' null space) are both scaled by floor_factor,
   // lowered where the floor itself caps the steps (below), down to 1e-4 (shifts near the unit diagonal's rounding).
+  const double always_added_shift = 1e-12;
   double floor_factor = 1.;
   double previous_floor_decrease = 0.; // what the last step lowered F by, if a full step at the floor; else 0
   bool whole_hessian = false;
@@ -772,8 +773,9 @@ inline Least_distortion_report minimize_conformal_distortion(const std::vector<s
     for(int k = 0; k < hessian.outerSize(); ++k)
       for(Eigen::SparseMatrix<double>::InnerIterator it(hessian, k); it; ++it)
         it.valueRef() *= scaling[it.row()] * scaling[it.col()];
+    const double shift = marquardt + floor_factor * always_added_shift;
     for(int i = 0; i < 2 * n; ++i)
-      hessian.coeffRef(i, i) += marquardt + floor_factor * 1e-12;
+      hessian.coeffRef(i, i) += shift;
     const bool factorized = factorization.factorize(hessian);
     if(whole_hessian && !factorized)
     {
@@ -795,8 +797,7 @@ inline Least_distortion_report minimize_conformal_distortion(const std::vector<s
     factorization.solve_in_place(step, pivots.minCoeff() <= -1e-6 * largest_pivot, 1e-12 * largest_pivot);
     // The shifts' share of the model's curvature along the step (scaled coordinates: shift |z|^2 over z^T M z, where
     // M z = -g).
-    const double shift_share = (marquardt + floor_factor * 1e-12) * step.squaredNorm()
-                               / -(gradient.array() * scaling.array()).matrix().dot(step);
+    const double shift_share = shift * step.squaredNorm() / -(gradient.array() * scaling.array()).matrix().dot(step);
     step = (scaling.array() * step.array()).matrix();
     const double slope = gradient.dot(step);
     // The step split as in mobius_newton.h: its rotation part dropped (F does not change under rotations), its boost
