@@ -1596,6 +1596,33 @@ TEST(LeastDistortion, GradientOfASqueezedFace)
   EXPECT_LT(torque.norm(), 1e-3 * energy);
 }
 
+// The line search's start: the first time a moving face folds, on a face of ordinary size and on one of edges 1e-9
+// (the cubic's relative form keeps its digits there). Corner c moves straight across the great circle through a and b
+// (the plane y = 0), which it reaches at t = c_y / (2 h): the bound is at most that and within 0.1% of it; +infinity
+// when the limit comes first, or when c moves away from that circle.
+TEST(LeastDistortion, FirstFoldingTimeOfAMovingFace)
+{
+  namespace D = SP::internal::least_distortion_detail;
+  const double infinity = std::numeric_limits<double>::infinity();
+  for(double h : {0.1, 1e-9})
+  {
+    const D::V3 a(0., 0., 1.), b = D::V3(h, 0., 1.).normalized(), c = D::V3(0., h, 1.).normalized();
+    const D::V3 still = D::V3::Zero(), across(0., -2. * h, 0.), away(0., h, 0.);
+    const double folds = c[1] / (2. * h);
+    const double bound = D::first_nonpositive_time(a, b, c, still, still, across, 1.);
+    EXPECT_LE(bound, folds) << h;
+    EXPECT_GE(bound, (1. - 1e-3) * folds) << h;
+    EXPECT_EQ(D::first_nonpositive_time(a, b, c, still, still, across, 0.9 * folds), infinity) << h;
+    EXPECT_EQ(D::first_nonpositive_time(a, b, c, still, still, away, 1.), infinity) << h;
+    // a and b moving instead (toward +y, past c): positive at the bound, folded just after it.
+    const D::V3 up(0., 2. * h, 0.);
+    const double other = D::first_nonpositive_time(a, b, c, up, up, still, 1.);
+    ASSERT_LT(other, 1.) << h;
+    EXPECT_GT(D::orientation(a + other * up, b + other * up, c), 0.) << h;
+    EXPECT_LE(D::orientation(a + 1.002 * other * up, b + 1.002 * other * up, c), 0.) << h;
+  }
+}
+
 // The smoother's corner blocks are face_energy()'s blocks, to the last bit (the maps do not change with it), on a
 // face of ordinary size with an obtuse angle and on one squeezed to edges of 1e-10.
 TEST(LeastDistortion, CornerBlockIsTheWholeHessiansBlock)
