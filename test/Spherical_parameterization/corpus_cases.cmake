@@ -115,7 +115,7 @@ foreach(arms ${SP_THIN_ARMS})
   if(EXISTS ${mesh})
     sp_add_corpus_case(${mesh} uniform)
     # Cotangent and mean-value weights (the default: the minimization of the distortion where their map fails) take
-    # 5 to 70 s on these (all 9 stationary since 2026-12-02, later): slow cases.
+    # 5 to 41 s on these (all 9 stationary since 2026-12-02; ctest two at a time): slow cases.
     list(APPEND SP_SLOW_CASES thin_arms_${arms}.cotangent thin_arms_${arms}.mean_value)
     sp_add_corpus_case(${mesh} cotangent)
     sp_add_corpus_case(${mesh} mean_value)
