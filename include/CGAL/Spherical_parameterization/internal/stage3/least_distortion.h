@@ -916,9 +916,9 @@ inline Least_distortion_report minimize_conformal_distortion(const std::vector<s
     // boundaries", 2015, here a cubic per face: first_nonpositive_time), not at the full step halved until no face
     // folds. Far from the minimum the faces about to fold cap those steps, and the halving took 1/8 where 0.2 was
     // possible; it also counted such steps as failures of the model and raised the shift (below), which shortened the
-    // next steps again. On the marching-tetrahedra surfaces with thin arms (mean value) the mesh's own minimization took
-    // 49 to 66 steps instead of 112 to 147. The whole Hessian's steps keep the halving: a fold there shows its model
-    // is wrong, and starting at a tiny bound (1e-5 on CGAL's dino) only took tiny steps.
+    // next steps again. On the marching-tetrahedra surfaces with thin arms (mean value) the mesh's own minimization
+    // took 49 to 66 steps instead of 112 to 147. The whole Hessian's steps keep the halving: a fold there shows its
+    // model is wrong, and starting at a tiny bound (1e-5 on CGAL's dino) only took tiny steps.
     double start = first;
     if(!whole_hessian)
     {
