@@ -928,7 +928,8 @@ TEST(KrylovSolvers, MinresSolvesAnIndefiniteSystem)
 // The supernodal L D L^T of the least-distortion steps, on the 2x2-block pattern of a mesh's vertex graph (two unknowns
 // per vertex, as the Hessians have): its solves match a dense factorization, for a positive definite matrix and for
 // indefinite ones (as many negative pivots as negative eigenvalues), for new values on the same pattern (the analysis
-// is reused) and for another pattern with as many entries, and from the upper triangle in the order given.
+// is reused) and for another pattern with as many entries, from the upper triangle in the order given, and ordered by
+// the vertices' graph.
 TEST(SupernodalLdlt, SolvesLikeADenseFactorization)
 {
   const SPI::Mesh_arrays arrays = arrays_of(read_mesh(cgal_data + "/oblong.off")); // 422 vertices
@@ -975,10 +976,17 @@ TEST(SupernodalLdlt, SolvesLikeADenseFactorization)
     Eigen::VectorXd z = b;
     in_given_order.solve_in_place(z);
     EXPECT_LT((z - expected).norm(), 1e-9 * expected.norm()) << "shift " << shift;
+    // Ordered by the vertices' graph (blocks of two unknowns, as least_distortion.h asks): the same solution.
+    SPI::Supernodal_ldlt by_vertices(true, Eigen::Lower, 2);
+    ASSERT_TRUE(by_vertices.factorize(lower));
+    Eigen::VectorXd v = b;
+    by_vertices.solve_in_place(v);
+    EXPECT_LT((v - expected).norm(), 1e-9 * expected.norm()) << "shift " << shift;
     // The number of negative pivots is the matrix's number of negative eigenvalues (Sylvester's law of inertia).
     const Eigen::Index negative_eigenvalues =
         (Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd>(dense).eigenvalues().array() < 0.).count();
     EXPECT_EQ((factorization.pivots().array() < 0.).count(), negative_eigenvalues) << "shift " << shift;
+    EXPECT_EQ((by_vertices.pivots().array() < 0.).count(), negative_eigenvalues) << "shift " << shift;
     if(shift == 0.)
     {
       EXPECT_EQ(negative_eigenvalues, 0);

@@ -61,9 +61,11 @@ struct Solver_tuning
 
   // --- Newton's linear systems (mobius_newton.h) ---
   // MINRES with the multigrid preconditioner from this many vertices on, a sparse factorization below. Per Newton
-  // step (2 threads): a factorization costs 0.02 s at 3k vertices, 0.3 s at 38k (bunny00), 7 s at 134k (igea), like
-  // n^1.5; MINRES 0.05 to 0.1 s at 38k, like n. On small meshes with thin parts the exact step is the more robust
-  // (CGAL's cow and hand: 1e-2-inexact steps from the initial guess end on a folded balanced map).
+  // step (2 threads): a factorization costs 0.02 s at 3k vertices, 0.3 s at 38k (bunny00), 7 s at 134k (igea) with
+  // Eigen's simplicial LDLT and 1 to 1.5 s with the supernodal one (from nested_dissection_min_vertices), like n^1.5;
+  // MINRES 0.05 to 0.1 s at 38k, like n. On small meshes with thin parts the exact step is the more robust
+  // (CGAL's cow and hand: 1e-2-inexact steps from the initial guess end on a folded balanced map). With negative
+  // weights, steps whose forcing is below newton_max_forcing factorize (mobius_newton.h).
   std::size_t iterative_newton_min_vertices = 8000;
   // With CGAL::Parallel_tag, the Newton steps compute independent quantities at the same time (the boosts' Jacobian
   // beside their energy and gradient, the line searches' tests beside their merits: side_by_side.h) from this many

@@ -185,6 +185,14 @@ inline Iteration_report mobius_newton(Sphere_state& state, const Iteration_optio
       recent_merits.erase(recent_merits.begin());
 
     bool has_step = false;
+    // With negative weights, once Newton converges fast enough that the forcing tightens below its cap, the steps are
+    // exact: MINRES with the Laplacian's preconditioner, a poor model of that Jacobian, then needs hundreds of
+    // iterations (c3d_igea's finest level: 150 for a forcing of 5e-4, 4.5 s, and up to 200 on vol2surf_lh_pial, where
+    // one factorized step takes 1 to 1.5 s and converges faster). Far from the balanced map the forcing stays at
+    // its cap and MINRES's inexact steps go through the folds (CGAL's armadillo: factorized there, its full steps
+    // stalled among 10,000 non-positive faces).
+    if(iterative && !positive_weights && forcing < tuning.newton_max_forcing)
+      iterative = false;
     if(iterative)
     {
       const bool assembled = krylov.assemble(x);
