@@ -124,8 +124,9 @@ except KeyboardInterrupt:
     check(time.monotonic() - start < 10.0, "Ctrl-C: KeyboardInterrupt after %.2f s" % (time.monotonic() - start))
 
 # least_distortion=False keeps mean value's least-squares map. After the Ctrl-C check: on 2026-12-02 a Ctrl-C in a
-# later call of the same process reached it only at that call's end in 2 of 3 runs on a loaded machine (not yet
-# explained; the note of that day has the reproduction).
+# later call of the same process reached it only at that call's end in 2 of 3 runs on a loaded machine. Probably the
+# cause found later that day (the Ctrl-C check itself failed so in 2 of 10 runs): the multilevel smoothing sweeps
+# dropped a refusal, and the module accepted the next reports; a refusal is final since (spherical_parameterize.h).
 Xmv0, infomv0 = sp.map_to_sphere(V, F, weights="mean_value", least_distortion=False)
 check(infomv0["least_distortion_map"] is False and infomv0["max_stationarity"] is not None,
       "mean-value weights, least_distortion=False: %s" % infomv0["status"])
