@@ -65,7 +65,7 @@ struct Solver_tuning
   // Eigen's simplicial LDLT and 1 to 1.5 s with the supernodal one (from nested_dissection_min_vertices), like n^1.5;
   // MINRES 0.05 to 0.1 s at 38k, like n. On small meshes with thin parts the exact step is the more robust
   // (CGAL's cow and hand: 1e-2-inexact steps from the initial guess end on a folded balanced map). With negative
-  // weights, steps whose forcing is below newton_max_forcing factorize (mobius_newton.h).
+  // weights, steps whose forcing is below newton_max_forcing may factorize (newton_factorize_after_minres_iterations).
   std::size_t iterative_newton_min_vertices = 8000;
   // With CGAL::Parallel_tag, the Newton steps compute independent quantities at the same time (the boosts' Jacobian
   // beside their energy and gradient, the line searches' tests beside their merits: side_by_side.h) from this many
@@ -85,6 +85,10 @@ struct Solver_tuning
   // MINRES stopped early is still a descent step, and the line search judges it. With negative weights (from a map
   // carried back), reaching the cap makes the rest of the phase factorize.
   int newton_max_minres_iterations = 200;
+  // With weights of either sign, a step whose forcing is below newton_max_forcing factorizes when the last MINRES
+  // solve took more than this many iterations (mobius_newton.h): about what one factorization costs on the meshes
+  // where MINRES then needed hundreds (c3d_igea's 134k vertices: 1 to 1.5 s, 35 to 45 iterations).
+  int newton_factorize_after_minres_iterations = 30;
 
   // --- Newton's steps (mobius_newton.h, global_newton.h) ---
   // Newton's full steps through folds are given this many iterations: the meshes of the 66 that converge this way

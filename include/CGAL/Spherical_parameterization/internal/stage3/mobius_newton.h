@@ -146,6 +146,7 @@ inline Iteration_report mobius_newton(Sphere_state& state, const Iteration_optio
                                            : nullptr);
   const std::vector<double> boost_weights = symmetric_raw_weights(system);
   double forcing = tuning.newton_max_forcing;
+  int last_minres_iterations = 0; // of the last MINRES solve
   std::vector<Vector3> step, trial(n);
   // What the line search lowers (see Step_merit).
   auto merit_of = [&](const Map_measure& measure) {
@@ -185,20 +186,26 @@ inline Iteration_report mobius_newton(Sphere_state& state, const Iteration_optio
       recent_merits.erase(recent_merits.begin());
 
     bool has_step = false;
-    // With negative weights, once Newton converges fast enough that the forcing tightens below its cap, the steps are
-    // exact: MINRES with the Laplacian's preconditioner, a poor model of that Jacobian, then needs hundreds of
-    // iterations (c3d_igea's finest level: 150 for a forcing of 5e-4, 4.5 s, and up to 200 on vol2surf_lh_pial, where
-    // one factorized step takes 1 to 1.5 s and converges faster). Far from the balanced map the forcing stays at
-    // its cap and MINRES's inexact steps go through the folds (CGAL's armadillo: factorized there, its full steps
-    // stalled among 10,000 non-positive faces).
-    if(iterative && !positive_weights && forcing < tuning.newton_max_forcing)
+    // With negative weights, once Newton converges fast enough that the forcing tightens below its cap, and MINRES
+    // already needed many iterations for the last step, the steps are exact: with the Laplacian's preconditioner, a
+    // poor model of that Jacobian, the tighter forcing costs hundreds of iterations (c3d_igea's finest level: 39 at
+    // the cap, then 150 for a forcing of 5e-4, 4.5 s, and up to 200 on vol2surf_lh_pial, where one factorized step
+    // takes 1 to 1.5 s and converges faster). Where MINRES is cheap it stays (bunny00: 5 to 15 iterations a step;
+    // factorized, its map took 1.6 s instead of 1.1 s). Far from the balanced map the forcing stays at its cap and
+    // MINRES's inexact steps go through the folds (CGAL's armadillo: factorized there, its full steps stalled among
+    // 10,000 non-positive faces).
+    if(iterative && !positive_weights && forcing < tuning.newton_max_forcing
+       && last_minres_iterations > tuning.newton_factorize_after_minres_iterations)
       iterative = false;
     if(iterative)
     {
       const bool assembled = krylov.assemble(x);
       has_step = assembled && krylov.solve(step, forcing, tuning.newton_max_minres_iterations);
       if(assembled) // otherwise last_iterations() is the previous solve's
+      {
         counts.linear_iterations += static_cast<std::size_t>(krylov.last_iterations());
+        last_minres_iterations = krylov.last_iterations();
+      }
     }
     else
     {
