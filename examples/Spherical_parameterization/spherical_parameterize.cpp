@@ -666,20 +666,26 @@ void print_text(std::ostream& out, const SP::Result& r, const Run_figures& run)
     out << std::setprecision(4) << "distortion:      mean angle error " << run.distortion.mean_angle_error_degrees
         << " degrees (max " << run.distortion.max_angle_error_degrees << "), std of log area ratios "
         << run.distortion.log_area_ratio_stddev << "\n";
-  out << std::setprecision(3) << "stage 1:         initial guess, " << r.initial_guess.seconds << " s, Res "
-      << r.initial_guess.residual << ", " << plural(r.initial_flipped_faces, "non-positive face");
-  if(r.levels.empty())
-    out << ", cut loop of " << r.cut_loop_length << " vertices"
-        << (r.uniform_initial_guess_fallback ? ", uniform-weight disks" : "")
-        << (r.partition_retries > 0 ? ", the partition of METIS seed " + std::to_string(r.partition_seed) + " ("
-                                          + plural(r.partition_retries, "partition") + " tried after the first)"
-                                    : std::string());
+  out << std::setprecision(3);
+  if(r.levels.empty() && r.initial_guess.iterations == 0)
+    out << "stage 1:         not run (the least-distortion minimization started from its own coarser levels)";
   else
   {
-    out << ", multilevel start: ";
-    for(std::size_t l = 0; l < r.levels.size(); ++l)
-      out << (l > 0 ? " -> " : "") << r.levels[l].vertices << " vertices ("
-          << plural(r.levels[l].newton_steps, "Newton step") << ", " << r.levels[l].seconds << " s)";
+    out << "stage 1:         initial guess, " << r.initial_guess.seconds << " s, Res " << r.initial_guess.residual
+        << ", " << plural(r.initial_flipped_faces, "non-positive face");
+    if(r.levels.empty())
+      out << ", cut loop of " << r.cut_loop_length << " vertices"
+          << (r.uniform_initial_guess_fallback ? ", uniform-weight disks" : "")
+          << (r.partition_retries > 0 ? ", the partition of METIS seed " + std::to_string(r.partition_seed) + " ("
+                                            + plural(r.partition_retries, "partition") + " tried after the first)"
+                                      : std::string());
+    else
+    {
+      out << ", multilevel start: ";
+      for(std::size_t l = 0; l < r.levels.size(); ++l)
+        out << (l > 0 ? " -> " : "") << r.levels[l].vertices << " vertices ("
+            << plural(r.levels[l].newton_steps, "Newton step") << ", " << r.levels[l].seconds << " s)";
+    }
   }
   out << "\n"
       << "stage 2:         projected Gauss-Seidel, " << r.gauss_seidel.seconds << " s, "

@@ -1013,6 +1013,30 @@ TEST(SupernodalLdlt, SolvesLikeADenseFactorization)
   Eigen::VectorXd y = b;
   factorization.solve_in_place(y);
   EXPECT_LT((Eigen::MatrixXd(full) * y - b).norm(), 1e-9 * b.norm());
+
+  // A dense matrix is one supernode of all its columns, factorized by blocks of panel columns (150 = 64 + 64 + 22):
+  // the same solution and inertia as a dense factorization, definite and indefinite.
+  const int size = 150;
+  for(const double shift : {0., 55.})
+  {
+    Eigen::MatrixXd dense(size, size);
+    for(int i = 0; i < size; ++i)
+      for(int j = 0; j <= i; ++j)
+        dense(i, j) = dense(j, i) = i == j ? 60. + 0.1 * i - shift : std::cos(0.7 * i * j + 0.3 * (i + j));
+    const Eigen::SparseMatrix<double> whole = dense.sparseView();
+    const Eigen::SparseMatrix<double> lower = whole.triangularView<Eigen::Lower>();
+    SPI::Supernodal_ldlt panels;
+    ASSERT_TRUE(panels.factorize(lower));
+    Eigen::VectorXd rhs = Eigen::VectorXd::LinSpaced(size, -1., 2.), z = rhs;
+    panels.solve_in_place(z);
+    const Eigen::VectorXd expected = dense.fullPivLu().solve(rhs);
+    EXPECT_LT((z - expected).norm(), 1e-9 * expected.norm()) << "shift " << shift;
+    const Eigen::Index negative_eigenvalues =
+        (Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd>(dense).eigenvalues().array() < 0.).count();
+    EXPECT_EQ((panels.pivots().array() < 0.).count(), negative_eigenvalues) << "shift " << shift;
+    if(shift > 0.)
+      EXPECT_GT(negative_eigenvalues, 0);
+  }
 }
 
 // Newton's full steps with the iterative linear solver (a mesh above iterative_newton_min_vertices): they reach the
@@ -1807,6 +1831,37 @@ TEST(LeastDistortion, MinimizesFromAPerturbedMap)
 // the tetrahedron, whose cotangent weights provably have no balanced bijective map; oscad_pcbvicebar's mean-value
 // weights), the bijective map of least conformal distortion, with status OK when it is stationary; on a mesh whose
 // cotangent map is balanced, that map.
+// Mean-value weights on a mesh with coarser levels: the minimization starts from its own levels, and stage 1 is not
+// run (it was, its map then replaced, before 2026-12-02). Where the minimization gives no map (here: a budget spent
+// before it starts), stage 1's map is returned, with a status that says it is no answer.
+TEST(LeastDistortion, MeanValueWeightsSkipStageOneWhereTheLevelsStart)
+{
+  Mesh mesh = read_mesh(cgal_data + "/homer.off");
+  ASSERT_TRUE(SPI::has_least_distortion_levels(num_vertices(mesh), SPI::Solver_tuning()));
+  auto sphere = mesh.add_property_map<Mesh::Vertex_index, Point>("v:sphere", Point(0, 0, 0)).first;
+  const SP::Result result = SP::spherical_parameterize(
+      mesh, sphere,
+      SP::parameters::combine(SP::parameters::weighting(SP::Weighting::MEAN_VALUE), SP::parameters::max_seconds(60.)));
+  ASSERT_EQ(result.status, SP::Error_code::OK) << result.message;
+  EXPECT_TRUE(result.least_distortion_map);
+  EXPECT_EQ(result.initial_guess.iterations, 0u) << "stage 1 ran";
+  EXPECT_EQ(result.separator_size, 0u);
+  EXPECT_TRUE(result.levels.empty());
+  EXPECT_TRUE(exact_certificate(mesh, sphere).bijective());
+
+  auto late = mesh.add_property_map<Mesh::Vertex_index, Point>("v:late", Point(0, 0, 0)).first;
+  const SP::Result spent = SP::spherical_parameterize(
+      mesh, late,
+      SP::parameters::combine(SP::parameters::weighting(SP::Weighting::MEAN_VALUE),
+                              SP::parameters::max_seconds(1e-9)));
+  EXPECT_NE(spent.status, SP::Error_code::OK) << spent.message;
+  EXPECT_FALSE(spent.least_distortion_map);
+  EXPECT_GE(spent.initial_guess.iterations, 1u) << "stage 1 did not run";
+  EXPECT_GT(spent.separator_size, 0u);
+  for(auto v : mesh.vertices()) // a map of every vertex: stage 1's
+    EXPECT_NEAR(std::sqrt(CGAL::squared_distance(late[v], Point(0, 0, 0))), 1., 1e-9);
+}
+
 TEST(SphericalParameterize, LeastDistortion)
 {
   // `file`: a name in CGAL's data, or a path.

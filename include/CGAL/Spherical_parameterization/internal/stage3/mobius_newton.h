@@ -112,7 +112,7 @@ inline Iteration_report mobius_newton(Sphere_state& state, const Iteration_optio
                                       const CGAL::Real_timer& clock, Mobius_newton_statistics* statistics = nullptr,
                                       std::size_t patience = 3, bool allow_folds = false,
                                       Step_merit step_merit = Step_merit::RESIDUAL,
-                                      Boost_aim boost_aim = Boost_aim::MAXIMUM)
+                                      Boost_aim boost_aim = Boost_aim::MAXIMUM, bool* other_merit_agrees = nullptr)
 {
   const Solver_tuning& tuning = options.tuning;
   Iteration_driver driver(state, options, clock, options.newton_stage, options.max_newton_sweeps);
@@ -152,6 +152,12 @@ inline Iteration_report mobius_newton(Sphere_state& state, const Iteration_optio
   auto merit_of = [&](const Map_measure& measure) {
     return step_merit == Step_merit::IMBALANCE ? measure.imbalance.rms : measure.residual;
   };
+  // `other_merit_agrees`: whether the other Step_merit judged every trial of the line searches alike (then these
+  // steps are what it would take, one for one: full_newton_steps skips its retry). Every other choice here is made
+  // on the same figures under either merit, except the relaxed line search through folds, counted as a disagreement.
+  const bool judge_other_merit = other_merit_agrees != nullptr;
+  if(judge_other_merit)
+    *other_merit_agrees = true;
   double residual = driver.measure().residual;
   double distance_to_test = distance_to_convergence(driver.measure(), options);
   const std::vector<Vector3> start = x;
@@ -256,7 +262,15 @@ inline Iteration_report mobius_newton(Sphere_state& state, const Iteration_optio
                   });
             },
             [&](double) {
-              return trial_merit < merit_to_lower;
+              const bool lower = trial_merit < merit_to_lower;
+              if(judge_other_merit && *other_merit_agrees)
+              {
+                const bool other_lower = step_merit == Step_merit::IMBALANCE
+                                             ? compute_residuals(system, trial).paper < driver.measure().residual
+                                             : imbalance_merit(system, trial) < driver.measure().imbalance.rms;
+                *other_merit_agrees = other_lower == lower && merit_to_lower == merit;
+              }
+              return lower;
             });
       };
       accepted_t = line_search();
@@ -266,6 +280,9 @@ inline Iteration_report mobius_newton(Sphere_state& state, const Iteration_optio
       // cotangent weights the steps often head for a folded balanced map, and the relaxed steps only lengthened those
       // paths (CGAL's fandisk_large: 67 steps instead of 19).
       const double recent_merit = *std::max_element(recent_merits.begin(), recent_merits.end());
+      if(accepted_t == 0. && allow_folds && positive_weights && judge_other_merit
+         && tuning.free_newton_nonmonotone_window > 1)
+        *other_merit_agrees = false; // the other merit's recent ones could relax its search differently
       if(accepted_t == 0. && allow_folds && positive_weights && recent_merit > merit)
       {
         merit_to_lower = recent_merit;

@@ -60,6 +60,13 @@ struct Multilevel_least_distortion_report
   std::vector<Least_distortion_level> levels; // the coarser levels, coarsest first
 };
 
+// Whether a mesh of `vertices` has a coarser level (multilevel_least_distortion_start() coarsens from this size on).
+inline bool has_least_distortion_levels(std::size_t vertices, const Solver_tuning& tuning)
+{
+  return vertices
+         >= static_cast<std::size_t>(tuning.least_distortion_coarsest_vertices / tuning.multilevel_coarsening_ratio);
+}
+
 // The start for the mesh of `points` and `triangles`: true with `x` set (every face positive), false when the mesh is
 // too small for a coarser level, the coarsest level has no map (`coarsest_map(const Mesh_arrays&,
 // std::vector<Vector3>&)` returns false: the caller's Tutte map of that level), or the budget or a cancel stopped a
@@ -80,8 +87,7 @@ bool multilevel_least_distortion_start(const std::vector<Vector3>& points,
   auto level_triangles = [&](std::size_t level) -> const std::vector<std::array<int, 3>>& {
     return level == 0 ? triangles : hierarchy[level - 1].coarse.triangles;
   };
-  while(level_points(hierarchy.size()).size()
-        >= static_cast<std::size_t>(tuning.least_distortion_coarsest_vertices / tuning.multilevel_coarsening_ratio))
+  while(has_least_distortion_levels(level_points(hierarchy.size()).size(), tuning))
   {
     const std::size_t n = level_points(hierarchy.size()).size();
     Coarsening coarsening =
