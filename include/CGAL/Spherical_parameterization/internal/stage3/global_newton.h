@@ -335,7 +335,7 @@ inline Iteration_report newton_through_folds(Sphere_state& state, const Iteratio
 // some steps along the boosts towards a collapse). The first phase from the two-disk guess and on each multilevel
 // level (`boost_aim`: Boost_aim::ROOT there). The reports of both attempts are added up. The retry is skipped where
 // the imbalances judged every trial of the first attempt's line searches as Res did: it would take the same steps,
-// one for one (vol2surf_lh_pial with cotangent weights: two steps on 110,646 vertices, 5 s, repeated bit for bit).
+// one for one (vol2surf_lh_pial with cotangent weights: two steps on 110,646 vertices, about 3 s, taken twice).
 inline Iteration_report full_newton_steps(Sphere_state& state, const Iteration_options& options,
                                           const CGAL::Real_timer& clock, Boost_aim boost_aim = Boost_aim::MAXIMUM)
 {
