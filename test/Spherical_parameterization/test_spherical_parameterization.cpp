@@ -1792,6 +1792,20 @@ TEST(LeastDistortion, FirstStepKeepsTheBudget)
   EXPECT_TRUE(taken.stationary);
 }
 
+// After a full Newton step of the whole Hessian that moved the map mostly along the boosts, the boosts are not
+// balanced again by differences (coarser than what is left of their error): CGAL's bull with mean-value weights
+// took 36 steps on the mesh when they were, the stationarity falling by a constant share a step; 18 now.
+TEST(LeastDistortion, NewtonsBoostStepsAreNotBalancedAgain)
+{
+  Mesh m = read_mesh(cgal_data + "/bull.off");
+  auto uv = m.add_property_map<Mesh::Vertex_index, Point>("v:sphere").first;
+  const SP::Result r = SP::spherical_parameterize(m, uv, SP::parameters::weighting(SP::Weighting::MEAN_VALUE));
+  EXPECT_EQ(r.status, SP::Error_code::OK) << r.message;
+  EXPECT_TRUE(r.least_distortion_map);
+  EXPECT_EQ(r.flipped_faces, 0u);
+  EXPECT_LE(r.least_distortion_steps, 24u);
+}
+
 TEST(LeastDistortion, MinimizesFromAPerturbedMap)
 {
   Mesh mesh;
@@ -2613,8 +2627,9 @@ TEST(SphericalParameterize, DeterministicAndInputUntouched)
 
 // CGAL::Parallel_tag embeds the two disks at the same time, builds each multilevel level's preconditioner while the
 // coarser levels are solved, and computes the Newton steps' independent quantities side by side (bunny00: 37,706
-// vertices, a multilevel start whose two finest levels are past Solver_tuning::side_by_side_min_vertices); the map
-// is bitwise the same as with Sequential_tag.
+// vertices, a multilevel start whose two finest levels are past Solver_tuning::side_by_side_min_vertices), and the
+// least-distortion minimization's face terms on several threads (bunny00 with mean-value weights); the map is
+// bitwise the same as with Sequential_tag.
 TEST(SphericalParameterize, ParallelTagGivesTheSameMap)
 {
 #ifdef CGAL_LINKED_WITH_TBB
@@ -2623,7 +2638,7 @@ TEST(SphericalParameterize, ParallelTagGivesTheSameMap)
       {cgal_data + "/triceratops.off", shared_meshes + "/trimesh_busted.off", cgal_data + "/bunny00.off"})
     for(SP::Weighting weighting : {SP::Weighting::UNIFORM, SP::Weighting::MEAN_VALUE})
     {
-      if(file != shared_meshes + "/trimesh_busted.off" && weighting == SP::Weighting::MEAN_VALUE)
+      if(file == cgal_data + "/triceratops.off" && weighting == SP::Weighting::MEAN_VALUE)
         continue;
       Mesh m = read_mesh(file);
       auto sequential = m.add_property_map<Mesh::Vertex_index, Point>("v:sequential").first;
@@ -2635,8 +2650,11 @@ TEST(SphericalParameterize, ParallelTagGivesTheSameMap)
       EXPECT_EQ(r1.status, r2.status) << file;
       EXPECT_EQ(r1.residual, r2.residual) << file;
       EXPECT_EQ(r1.levels.size(), r2.levels.size()) << file;
-      if(file == cgal_data + "/bunny00.off")
+      if(file == cgal_data + "/bunny00.off" && weighting == SP::Weighting::UNIFORM)
         EXPECT_GE(r2.levels.size(), 2u) << "bunny00 no longer starts multilevel: this case tests less than it says";
+      if(file == cgal_data + "/bunny00.off" && weighting == SP::Weighting::MEAN_VALUE)
+        EXPECT_TRUE(r2.least_distortion_map && r2.least_distortion_steps > 0)
+            << "bunny00's minimization took no step: this case tests less than it says";
       for(auto v : m.vertices())
         ASSERT_TRUE(sequential[v] == parallel[v]) << file;
     }

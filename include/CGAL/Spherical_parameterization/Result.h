@@ -156,8 +156,9 @@ struct Result
   bool bijective = false;        ///< No flipped face and a generic point covered once (exact predicates).
 
   /// Stage 1: separator, two disks, Moebius, stereographic projection. Not run (`iterations` 0, `levels` empty) where
-  /// the least-distortion minimization of non-symmetric weights starts from its own coarser levels (meshes of 4,000
-  /// vertices and more): its time counts in `newton`.
+  /// the least-distortion minimization starts from its own coarser levels (meshes of 4,000 vertices and more) at once:
+  /// with non-symmetric weights, and with cotangent weights where the multilevel start ended unbalanced; its time
+  /// counts in `newton`.
   Stage_statistics initial_guess;
   Stage_statistics gauss_seidel;  ///< Stage 2: projected Gauss-Seidel while `Res` decreases.
   Stage_statistics newton;        ///< Stage 3: the `nonlinear_solver` until the `convergence_test` holds.

@@ -184,14 +184,19 @@ public:
       m_result.newton.linear_iterations = m_newton.linear_iterations;
       m_result.newton.residual = m_newton.residual;
     }
-    else if(m_iteration_options.least_distortion_follows && !m_system.symmetric
+    else if(m_iteration_options.least_distortion_follows && (!m_system.symmetric || m_multilevel_tried)
             && has_least_distortion_levels(m_system.number_of_vertices, m_options.iterations.tuning))
     {
-      // Non-symmetric weights whose minimization follows: it starts from its own coarser levels, whose map replaced
-      // stage 1's on every mesh measured, so stage 1 runs only where that start fails (least_distortion()): 1.4 s
-      // saved on c3d_igea and vol2surf_lh_pial, 0.7 s on bigbrain.
+      // The minimization follows at once (non-symmetric weights; or the multilevel start ended unbalanced, cotangent)
+      // and starts from its own coarser levels, whose map replaced stage 1's on every mesh measured, so stage 1 runs
+      // only where that start fails (least_distortion()): 1.4 s saved on c3d_igea and vol2surf_lh_pial with mean-value
+      // weights, 0.7 s on bigbrain; 1.1 s on vol2surf_lh_pial with cotangent weights.
       m_stage_1_deferred = true;
       x.clear();
+      m_result.levels.clear(); // those of the multilevel start, if it ran: its map is not the one returned
+      m_result.initial_flipped_faces = 0;
+      m_result.initial_guess = Stage_statistics();
+      m_system.regularized_tips.clear();
       check_for_a_balanced_map();
     }
     else

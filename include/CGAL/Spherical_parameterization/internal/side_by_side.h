@@ -14,8 +14,12 @@
 #define CGAL_SPHERICAL_PARAMETERIZATION_INTERNAL_SIDE_BY_SIDE_H
 
 #ifdef CGAL_LINKED_WITH_TBB
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
 #include <tbb/parallel_invoke.h>
 #endif
+
+#include <cstddef>
 
 namespace CGAL {
 namespace Spherical_parameterization {
@@ -52,6 +56,26 @@ bool test_with_merit(bool parallel, const Test& test, const Merit& merit)
   if(passed)
     merit();
   return passed;
+}
+
+// `body(begin, end)` over the blocks of [0, count): with `parallel` (TBB) on several threads at once, so that the body
+// may only write what belongs to its block (per-face terms, later added up in order by one thread: the sums and with
+// them the results are the same to the last bit either way); otherwise over the whole range in one call.
+template <class Body>
+void for_each_block(bool parallel, std::size_t count, std::size_t grain, const Body& body)
+{
+#ifdef CGAL_LINKED_WITH_TBB
+  if(parallel)
+  {
+    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, count, grain),
+                      [&](const tbb::blocked_range<std::size_t>& range) { body(range.begin(), range.end()); });
+    return;
+  }
+#else
+  (void)grain;
+  (void)parallel;
+#endif
+  body(std::size_t(0), count);
 }
 
 } // namespace internal

@@ -28,6 +28,7 @@
 
 #include <CGAL/Spherical_parameterization/internal/Vector3.h>
 #include <CGAL/Spherical_parameterization/internal/iteration_driver.h>
+#include <CGAL/Spherical_parameterization/internal/side_by_side.h>
 #include <CGAL/Spherical_parameterization/internal/stage3/mobius.h>
 #include <CGAL/Spherical_parameterization/internal/stage3/supernodal_ldlt.h>
 
@@ -654,9 +655,33 @@ inline Least_distortion_report minimize_conformal_distortion(const std::vector<s
   };
   // F(z) - F(y) face by face (the total would lose the small faces' changes), F(y)'s terms as the last assembly
   // computed them; +infinity if a face is not positive.
-  std::vector<double> current_terms(m, 0.);
+  // With CGAL::Parallel_tag (from Solver_tuning::side_by_side_min_vertices on) the faces' terms of the line search,
+  // the assembly and the bound of the folds are computed on several threads and added up in order by one, so that
+  // every sum, and with them the iterates, are those of the sequential run to the last bit.
+  const bool parallel = options.parallel && x.size() >= options.tuning.side_by_side_min_vertices;
+  constexpr std::size_t grain = 256; // faces per task
+  std::vector<double> current_terms(m, 0.), face_values(parallel ? m : 0);
   auto energy_change = [&](const std::vector<V3>& z) {
     double change = 0.;
+    if(parallel)
+    {
+      for_each_block(true, m, grain, [&](std::size_t begin, std::size_t end) {
+        V3 p[3];
+        for(std::size_t f = begin; f < end; ++f)
+        {
+          corners(z, f, p);
+          face_values[f] = orientation(p[0], p[1], p[2]) > 0. ? face_energy(shapes[f], p)
+                                                              : std::numeric_limits<double>::infinity();
+        }
+      });
+      for(std::size_t f = 0; f < m; ++f)
+      {
+        if(face_values[f] == std::numeric_limits<double>::infinity())
+          return face_values[f];
+        change += face_values[f] - current_terms[f];
+      }
+      return change;
+    }
     V3 p[3];
     for(std::size_t f = 0; f < m; ++f)
     {
@@ -682,7 +707,52 @@ inline Least_distortion_report minimize_conformal_distortion(const std::vector<s
   std::vector<int> edge_count(n);
   std::vector<double> row_abs(2 * n);
   Eigen::VectorXd gradient(2 * n);
-  std::vector<Eigen::Triplet<double>> entries;
+  // The Hessian's lower triangle has the same pattern at every pass: it is made once, with where each face's 21
+  // entries go in it (face_entries), and each pass adds the faces' entries there, face after face (the sums of the
+  // triplets' assembly, made anew at each pass before, with a fifth of its memory: 84 bytes a face instead of 336).
+  constexpr int entries_per_face = 21; // 3 diagonal 2x2 blocks' lower triangles, 3 blocks below the diagonal
+  auto for_each_face_entry = [&](std::size_t f, auto&& visit) { // (row, col, local row, local col), in order
+    for(int a = 0; a < 3; ++a)
+      for(int b = 0; b < 3; ++b)
+        for(int r = 0; r < 2; ++r)
+          for(int s = 0; s < 2; ++s)
+          {
+            const int row = 2 * triangles[f][a] + r, col = 2 * triangles[f][b] + s;
+            if(row >= col)
+              visit(row, col, 2 * a + r, 2 * b + s);
+          }
+  };
+  Eigen::SparseMatrix<double> hessian(2 * n, 2 * n);
+  std::vector<int> face_entries(entries_per_face * m);
+  {
+    std::vector<Eigen::Triplet<double>> entries;
+    entries.reserve(entries_per_face * m);
+    for(std::size_t f = 0; f < m; ++f)
+      for_each_face_entry(f, [&](int row, int col, int, int) { entries.emplace_back(row, col, 0.); });
+    hessian.setFromTriplets(entries.begin(), entries.end());
+    hessian.makeCompressed();
+    const int* starts = hessian.outerIndexPtr();
+    const int* rows = hessian.innerIndexPtr();
+    for(std::size_t f = 0; f < m; ++f)
+    {
+      int k = 0;
+      for_each_face_entry(f, [&](int row, int col, int, int) {
+        face_entries[entries_per_face * f + k++] =
+            static_cast<int>(std::lower_bound(rows + starts[col], rows + starts[col + 1], row) - rows);
+      });
+    }
+  }
+  // A face's share of a pass, computed on its own (on several threads with `parallel`), then added up in order.
+  struct Face_pass
+  {
+    double energy;
+    double gradient[6];           // in the tangent bases of its corners
+    double entries[entries_per_face]; // for_each_face_entry's order
+    double row_abs[6];            // of the tangent Hessian's rows before the projection (the rounding floor)
+    double chords[3];             // at each corner, the lengths of its two edges
+  };
+  constexpr std::size_t faces_per_batch = 16384;
+  std::vector<Face_pass> batch(std::min(m, faces_per_batch));
   // Supernodal: 3 to 4 times faster than Eigen's simplicial LDLT on these Hessians; ordered by vertices (blocks of 2).
   Supernodal_ldlt factorization(true, Eigen::Lower, 2);
   double marquardt = 1e-6;
@@ -712,29 +782,26 @@ inline Least_distortion_report minimize_conformal_distortion(const std::vector<s
       t2[i] = y[i].cross(t1[i]);
     }
     gradient.setZero();
-    entries.clear();
+    std::fill(hessian.valuePtr(), hessian.valuePtr() + hessian.nonZeros(), 0.);
+    double* hessian_values = hessian.valuePtr();
     std::fill(edge_sum.begin(), edge_sum.end(), 0.);
     std::fill(face_weight.begin(), face_weight.end(), 0.);
     std::fill(edge_count.begin(), edge_count.end(), 0);
     std::fill(row_abs.begin(), row_abs.end(), 0.);
     report.energy = 0.;
-    for(std::size_t f = 0; f < m; ++f)
-    {
+    auto compute_face = [&](std::size_t f, Face_pass& out) {
       V3 p[3];
       corners(y, f, p);
       Vector9 g;
       Matrix9 h;
-      current_terms[f] = face_energy(shapes[f], p, &g, &h);
-      report.energy += current_terms[f];
+      out.energy = face_energy(shapes[f], p, &g, &h);
       Eigen::Matrix<double, 9, 6> basis = Eigen::Matrix<double, 9, 6>::Zero();
       for(int k = 0; k < 3; ++k)
       {
         const int v = triangles[f][k];
         basis.block<3, 1>(3 * k, 2 * k) = t1[v];
         basis.block<3, 1>(3 * k, 2 * k + 1) = t2[v];
-        edge_sum[v] += (p[(k + 1) % 3] - p[k]).norm() + (p[(k + 2) % 3] - p[k]).norm();
-        edge_count[v] += 2;
-        face_weight[v] += shapes[f].weight;
+        out.chords[k] = (p[(k + 1) % 3] - p[k]).norm() + (p[(k + 2) % 3] - p[k]).norm();
       }
       const Eigen::Matrix<double, 6, 1> g_tangent = basis.transpose() * g;
       Eigen::Matrix<double, 6, 6> h_tangent = basis.transpose() * h * basis;
@@ -745,27 +812,51 @@ inline Least_distortion_report minimize_conformal_distortion(const std::vector<s
         h_tangent(2 * k, 2 * k) -= radial;
         h_tangent(2 * k + 1, 2 * k + 1) -= radial;
       }
-      for(int a = 0; a < 3; ++a)
-        for(int r = 0; r < 2; ++r)
-          row_abs[2 * triangles[f][a] + r] += h_tangent.row(2 * a + r).cwiseAbs().sum();
+      for(int r = 0; r < 6; ++r)
+      {
+        out.row_abs[r] = h_tangent.row(r).cwiseAbs().sum();
+        out.gradient[r] = g_tangent[r];
+      }
       if(!whole_hessian)
       {
         Eigen::SelfAdjointEigenSolver<Eigen::Matrix<double, 6, 6>> eigen(h_tangent);
         h_tangent = eigen.eigenvectors() * eigen.eigenvalues().cwiseMax(0.).asDiagonal()
                     * eigen.eigenvectors().transpose();
       }
-      for(int a = 0; a < 3; ++a)
+      int k = 0;
+      for_each_face_entry(f, [&](int, int, int local_row, int local_col) {
+        out.entries[k++] = h_tangent(local_row, local_col);
+      });
+    };
+    for(std::size_t first_face = 0; first_face < m; first_face += batch.size())
+    {
+      const std::size_t count = std::min(batch.size(), m - first_face);
+      for_each_block(parallel, count, grain, [&](std::size_t begin, std::size_t end) {
+        for(std::size_t b = begin; b < end; ++b)
+          compute_face(first_face + b, batch[b]);
+      });
+      for(std::size_t b = 0; b < count; ++b)
       {
-        const int va = triangles[f][a];
-        gradient.segment<2>(2 * va) += g_tangent.segment<2>(2 * a);
-        for(int b = 0; b < 3; ++b)
+        const std::size_t f = first_face + b;
+        const Face_pass& terms = batch[b];
+        current_terms[f] = terms.energy;
+        report.energy += terms.energy;
+        for(int k = 0; k < 3; ++k)
+        {
+          const int v = triangles[f][k];
+          edge_sum[v] += terms.chords[k];
+          edge_count[v] += 2;
+          face_weight[v] += shapes[f].weight;
+        }
+        for(int a = 0; a < 3; ++a)
           for(int r = 0; r < 2; ++r)
-            for(int s = 0; s < 2; ++s)
-            {
-              const int row = 2 * va + r, col = 2 * triangles[f][b] + s;
-              if(row >= col)
-                entries.emplace_back(row, col, h_tangent(2 * a + r, 2 * b + s));
-            }
+          {
+            row_abs[2 * triangles[f][a] + r] += terms.row_abs[2 * a + r];
+            gradient[2 * triangles[f][a] + r] += terms.gradient[2 * a + r];
+          }
+        const int* where = face_entries.data() + entries_per_face * f;
+        for(int e = 0; e < entries_per_face; ++e)
+          hessian_values[where[e]] += terms.entries[e];
       }
     }
     report.max_stationarity = 0.;
@@ -820,8 +911,6 @@ inline Least_distortion_report minimize_conformal_distortion(const std::vector<s
     // magnitude (thin limbs squeezed to edges of 1e-8 give diagonal entries of 1e16 and more), and unscaled, the
     // factorization's rounding swamped the steps of the large triangles (CGAL's cow: one vertex stuck at
     // stationarity 0.013 for 2,000 steps, pivots from 190 to 1.4e17).
-    Eigen::SparseMatrix<double> hessian(2 * n, 2 * n);
-    hessian.setFromTriplets(entries.begin(), entries.end());
     Eigen::VectorXd scaling(2 * n);
     for(int i = 0; i < 2 * n; ++i)
     {
@@ -926,9 +1015,25 @@ inline Least_distortion_report minimize_conformal_distortion(const std::vector<s
     if(!whole_hessian)
     {
       double bound = std::numeric_limits<double>::infinity();
-      for(const std::array<int, 3>& f : triangles)
-        bound = (std::min)(bound, first_nonpositive_time(y[f[0]], y[f[1]], y[f[2]], direction[f[0]],
-                                                         direction[f[1]], direction[f[2]], first));
+      if(parallel)
+      {
+        for_each_block(true, m, grain, [&](std::size_t begin, std::size_t end) {
+          for(std::size_t f = begin; f < end; ++f)
+          {
+            const std::array<int, 3>& t = triangles[f];
+            face_values[f] = first_nonpositive_time(y[t[0]], y[t[1]], y[t[2]], direction[t[0]], direction[t[1]],
+                                                    direction[t[2]], first);
+          }
+        });
+        for(std::size_t f = 0; f < m; ++f)
+          bound = (std::min)(bound, face_values[f]);
+      }
+      else
+      {
+        for(const std::array<int, 3>& f : triangles)
+          bound = (std::min)(bound, first_nonpositive_time(y[f[0]], y[f[1]], y[f[2]], direction[f[0]],
+                                                           direction[f[1]], direction[f[2]], first));
+      }
       if(bound < first)
         start = 0.9 * bound;
     }
@@ -962,8 +1067,17 @@ inline Least_distortion_report minimize_conformal_distortion(const std::vector<s
     ++report.newton_steps;
     failures = 0;
     y.swap(trial);
-    report.boosts += balance_distortion_boosts(triangles, shapes, y, tuning.least_distortion_boost_iterations,
-                                               tuning.least_distortion_boost_share, decrease);
+    // Not after a full step of the whole Hessian that applied its boost part as a boost (longer than the rest's
+    // largest move): that step was mostly along the boosts, and its boost part is Newton's, right to second order;
+    // the balancing's forward differences (over boosts of 1e-3) are coarser than what is left of the boosts' error
+    // then: each balancing moved the map along the boosts by about that error, the next step took it back, and the
+    // stationarity fell by only 12% a step (CGAL's diplodocus refined once, cotangent weights, its level of 23,980
+    // vertices: 56 steps, 12 without). After the other steps the balancing stays: skipped after every full step of
+    // the whole Hessian, it cost steps where the shift holds the flat directions back (bull refined once, mean value:
+    // 21 steps on the mesh instead of 12; oded_scorpion 18 instead of 13).
+    if(!(whole_hessian && accepted == first && boost.norm() > 0.))
+      report.boosts += balance_distortion_boosts(triangles, shapes, y, tuning.least_distortion_boost_iterations,
+                                                 tuning.least_distortion_boost_share, decrease);
     // Where the floor caps the steps: a full step at the floor, the shifts over half the model's curvature along it,
     // and F lowered by at least 0.8 times what the step before (also full, at the floor) lowered it: linear
     // convergence along a direction flatter than the floor. A marching-tetrahedra surface with thin arms
