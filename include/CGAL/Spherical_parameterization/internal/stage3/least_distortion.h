@@ -746,10 +746,10 @@ inline Least_distortion_report minimize_conformal_distortion(const std::vector<s
   struct Face_pass
   {
     double energy;
-    double gradient[6];           // in the tangent bases of its corners
-    double entries[entries_per_face]; // for_each_face_entry's order
-    double row_abs[6];            // of the tangent Hessian's rows before the projection (the rounding floor)
-    double chords[3];             // at each corner, the lengths of its two edges
+    double gradient[6];               // in the tangent bases of its corners
+    double entries[entries_per_face]; // in for_each_face_entry's order
+    double row_abs[6];                // of the tangent Hessian's rows before the projection (the rounding floor)
+    double chords[3];                 // at each corner, the lengths of its two edges
   };
   constexpr std::size_t faces_per_batch = 16384;
   std::vector<Face_pass> batch(std::min(m, faces_per_batch));
