@@ -925,6 +925,33 @@ TEST(KrylovSolvers, MinresSolvesAnIndefiniteSystem)
   EXPECT_LT(std::sqrt(error / norm_b), 1e-8);
 }
 
+// A symmetric matrix of 2 x 2 blocks on a mesh's vertex graph (the pattern of the least-distortion Hessians), its lower
+// triangle: diagonally dominant, positive definite for `shift` 0 and indefinite for larger shifts.
+static Eigen::SparseMatrix<double> vertex_block_matrix(const SPI::Sphere_system& system, double shift)
+{
+  const int n = 2 * static_cast<int>(system.number_of_vertices);
+  std::vector<Eigen::Triplet<double>> entries;
+  for(std::size_t i = 0; i < system.number_of_vertices; ++i)
+  {
+    const int a = 2 * static_cast<int>(i);
+    const double degree = static_cast<double>(system.offsets[i + 1] - system.offsets[i]);
+    entries.emplace_back(a, a, degree + 1. - shift);
+    entries.emplace_back(a + 1, a + 1, degree + 1.1 - shift);
+    entries.emplace_back(a + 1, a, 0.05 * std::sin(double(i)));
+    for(std::size_t k = system.offsets[i]; k < system.offsets[i + 1]; ++k)
+    {
+      const int b = 2 * system.neighbors[k];
+      if(b > a)
+        for(int r = 0; r < 2; ++r)
+          for(int c = 0; c < 2; ++c)
+            entries.emplace_back(b + r, a + c, r == c ? -1. : 0.1 * std::cos(double(k + r + c)));
+    }
+  }
+  Eigen::SparseMatrix<double> lower(n, n);
+  lower.setFromTriplets(entries.begin(), entries.end());
+  return lower;
+}
+
 // The supernodal L D L^T of the least-distortion steps, on the 2x2-block pattern of a mesh's vertex graph (two unknowns
 // per vertex, as the Hessians have): its solves match a dense factorization, for a positive definite matrix and for
 // indefinite ones (as many negative pivots as negative eigenvalues), for new values on the same pattern (the analysis
@@ -935,28 +962,7 @@ TEST(SupernodalLdlt, SolvesLikeADenseFactorization)
   const SPI::Mesh_arrays arrays = arrays_of(read_mesh(cgal_data + "/oblong.off")); // 422 vertices
   const SPI::Sphere_system system = system_of(arrays);
   const int n = 2 * static_cast<int>(system.number_of_vertices);
-  auto matrix_with_shift = [&](double shift) {
-    std::vector<Eigen::Triplet<double>> entries;
-    for(std::size_t i = 0; i < system.number_of_vertices; ++i)
-    {
-      const int a = 2 * static_cast<int>(i);
-      const double degree = static_cast<double>(system.offsets[i + 1] - system.offsets[i]);
-      entries.emplace_back(a, a, degree + 1. - shift);
-      entries.emplace_back(a + 1, a + 1, degree + 1.1 - shift);
-      entries.emplace_back(a + 1, a, 0.05 * std::sin(double(i)));
-      for(std::size_t k = system.offsets[i]; k < system.offsets[i + 1]; ++k)
-      {
-        const int b = 2 * system.neighbors[k];
-        if(b > a)
-          for(int r = 0; r < 2; ++r)
-            for(int c = 0; c < 2; ++c)
-              entries.emplace_back(b + r, a + c, r == c ? -1. : 0.1 * std::cos(double(k + r + c)));
-      }
-    }
-    Eigen::SparseMatrix<double> lower(n, n);
-    lower.setFromTriplets(entries.begin(), entries.end());
-    return lower;
-  };
+  auto matrix_with_shift = [&](double shift) { return vertex_block_matrix(system, shift); };
   Eigen::VectorXd b(n);
   for(int i = 0; i < n; ++i)
     b[i] = std::sin(0.3 * i) + (i % 5 == 0 ? 1. : 0.);
@@ -1036,6 +1042,43 @@ TEST(SupernodalLdlt, SolvesLikeADenseFactorization)
     EXPECT_EQ((panels.pivots().array() < 0.).count(), negative_eigenvalues) << "shift " << shift;
     if(shift > 0.)
       EXPECT_GT(negative_eigenvalues, 0);
+  }
+}
+
+// A pattern from split_min_unknowns on is split in two groups of subtrees (nested dissection's halves) and the top:
+// the solution and the inertia of Eigen's factorization, definite and indefinite, and the same factor to the last bit
+// whether the two groups are factorized by one thread or by two.
+TEST(SupernodalLdlt, SplitPatternGivesTheSameFactorOnOneOrTwoThreads)
+{
+  const SPI::Mesh_arrays arrays = arrays_of(read_mesh(cgal_data + "/bunny00.off")); // 37,706 vertices
+  const SPI::Sphere_system system = system_of(arrays);
+  const int n = 2 * static_cast<int>(system.number_of_vertices);
+  Eigen::VectorXd b(n);
+  for(int i = 0; i < n; ++i)
+    b[i] = std::sin(0.3 * i) + (i % 5 == 0 ? 1. : 0.);
+  SPI::Supernodal_ldlt one_thread(true, Eigen::Lower, 2), two_threads(true, Eigen::Lower, 2);
+  two_threads.set_parallel(true);
+  for(const double shift : {0., 1.5})
+  {
+    const Eigen::SparseMatrix<double> lower = vertex_block_matrix(system, shift);
+    ASSERT_TRUE(one_thread.factorize(lower));
+    ASSERT_TRUE(two_threads.factorize(lower));
+    EXPECT_TRUE(one_thread.split()) << "shift " << shift;
+    Eigen::VectorXd x = b, y = b;
+    one_thread.solve_in_place(x);
+    two_threads.solve_in_place(y);
+    EXPECT_TRUE(x == y) << "shift " << shift;
+    EXPECT_TRUE(one_thread.pivots() == two_threads.pivots()) << "shift " << shift;
+    // As accurate as Eigen's factorization (the indefinite matrix is ill-conditioned: 1e-10 relative is too tight).
+    Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>, Eigen::Lower> eigen(lower);
+    ASSERT_EQ(eigen.info(), Eigen::Success);
+    const Eigen::SparseMatrix<double> full = lower.selfadjointView<Eigen::Lower>();
+    const Eigen::VectorXd by_eigen = eigen.solve(b);
+    EXPECT_LT((full * x - b).norm(), std::max(1e-12 * b.norm(), 10. * (full * by_eigen - b).norm()))
+        << "shift " << shift << ", Eigen's residual " << (full * by_eigen - b).norm();
+    EXPECT_EQ((one_thread.pivots().array() < 0.).count(), (eigen.vectorD().array() < 0.).count()) << "shift " << shift;
+    if(shift > 0.)
+      EXPECT_GT((eigen.vectorD().array() < 0.).count(), 0);
   }
 }
 

@@ -755,6 +755,7 @@ inline Least_distortion_report minimize_conformal_distortion(const std::vector<s
   std::vector<Face_pass> batch(std::min(m, faces_per_batch));
   // Supernodal: 3 to 4 times faster than Eigen's simplicial LDLT on these Hessians; ordered by vertices (blocks of 2).
   Supernodal_ldlt factorization(true, Eigen::Lower, 2);
+  factorization.set_parallel(parallel);
   double marquardt = 1e-6;
   const double marquardt_floor = options.tuning.least_distortion_marquardt_floor;
   // The floor and the shift always added (against the rotations' null space) are both scaled by floor_factor,

@@ -141,6 +141,7 @@ inline Iteration_report mobius_newton(Sphere_state& state, const Iteration_optio
   bool iterative = (allow_folds || boost_aim == Boost_aim::ROOT) && n >= tuning.iterative_newton_min_vertices
                    && (positive_weights || boost_aim == Boost_aim::ROOT);
   const bool parallel = options.parallel && n >= tuning.side_by_side_min_vertices; // side_by_side.h
+  newton.set_parallel(parallel);
   Tangent_krylov_system krylov(system, iterative && options.preconditioner_ahead != nullptr
                                            ? options.preconditioner_ahead->get(system)
                                            : nullptr);

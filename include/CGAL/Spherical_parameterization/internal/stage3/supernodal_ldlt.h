@@ -19,11 +19,19 @@
 // The method is the textbook one (elimination tree, column counts from the row subtrees, fundamental supernodes,
 // right-looking updates scattered into the ancestors' panels); see Davis, "Direct Methods for Sparse Linear
 // Systems", SIAM 2006, chapters 4 and 9.
+//
+// Large patterns (split_min_unknowns) are split in two: two disjoint groups of subtrees of the supernodal elimination
+// tree, of about the same cost (nested dissection's two halves, usually), whose supernodes depend on their own group
+// only, and the top of the tree (the separators above them). With set_parallel(true) the two groups are factorized at
+// the same time (TBB); the second one's updates of the top go to a buffer of its own, added to the top's panels once
+// both are done, so the sums are made in the same order either way: the factor is the same to the last bit with one
+// thread or two (side_by_side.h says why that matters).
 
 #ifndef CGAL_SPHERICAL_PARAMETERIZATION_INTERNAL_STAGE3_SUPERNODAL_LDLT_H
 #define CGAL_SPHERICAL_PARAMETERIZATION_INTERNAL_STAGE3_SUPERNODAL_LDLT_H
 
 #include <CGAL/Spherical_parameterization/internal/deferred_stop_signals.h>
+#include <CGAL/Spherical_parameterization/internal/side_by_side.h>
 
 #include <Eigen/Dense>
 #include <Eigen/Sparse>
@@ -51,6 +59,9 @@ public:
   explicit Supernodal_ldlt(bool order_by_metis = true, Eigen::UpLoType stored = Eigen::Lower, int block_size = 1)
     : m_order_by_metis(order_by_metis), m_lower(stored == Eigen::Lower), m_block_size(std::max(1, block_size))
   {}
+
+  // Whether the two groups of a split pattern are factorized by two threads (the factor is the same either way).
+  void set_parallel(bool parallel) { m_parallel = parallel; }
 
   // False when a pivot is zero or not finite (as Eigen's SimplicialLDLT, which does not pivot either).
   bool factorize(const Eigen::SparseMatrix<double>& matrix)
@@ -117,6 +128,9 @@ public:
     for(Eigen::Index i = 0; i < n; ++i)
       x[m_order[i]] = y[i];
   }
+
+  // Whether the pattern analyzed was split in two groups (see the file's comment).
+  bool split() const { return m_split; }
 
   // The pivots D, in the factorization's order.
   const Eigen::VectorXd& pivots() const { return m_pivots; }
@@ -309,6 +323,7 @@ private:
       m_row_start.push_back(m_rows.size());
       m_panel_start.push_back(m_panel_start.back() + rows.size() * static_cast<std::size_t>(l - f + 1));
     }
+    split_in_two(parent, owner, child_supernodes);
     m_values.assign(m_panel_start.back(), 0.);
     m_pivots.resize(n);
     // Where each stored entry of A's lower triangle goes in the panels.
@@ -338,13 +353,126 @@ private:
     return true;
   }
 
-  bool factorize_numeric()
+  // The two groups of subtrees and the top (see the file's comment): m_group[s] is 0 or 1, or top_group. The split
+  // starts from the roots, and while the costlier group carries more than 55% of the groups' cost, the costliest
+  // subtree gives its root to the top and its children to the groups (largest first, each to the cheaper group).
+  // No split (every supernode in group 0) below split_min_unknowns or where no balanced split is found.
+  void split_in_two(const std::vector<int>& parent, const std::vector<int>& owner,
+                    const std::vector<std::vector<int>>& child_supernodes)
   {
     const std::size_t supernodes = m_first.size() - 1;
-    std::vector<int> slot(static_cast<std::size_t>(m_size), -1);
-    Eigen::MatrixXd update, positive, negative, scaled;
+    m_group.assign(supernodes, 0);
+    m_top_offset.clear();
+    m_buffer.clear();
+    m_split = false;
+    if(m_size < split_min_unknowns)
+      return;
+    // Each supernode's cost (its panel, then its update of the rows below) and its subtree's (children come first).
+    std::vector<int> parent_supernode(supernodes, -1);
+    std::vector<double> subtree_cost(supernodes, 0.);
     for(std::size_t s = 0; s < supernodes; ++s)
     {
+      const double k = m_first[s + 1] - m_first[s], m = static_cast<double>(rows_of(s));
+      subtree_cost[s] += k * k * m + (m - k) * (m - k) * k;
+      const int last_parent = parent[static_cast<std::size_t>(m_first[s + 1] - 1)];
+      if(last_parent != -1)
+      {
+        parent_supernode[s] = owner[static_cast<std::size_t>(last_parent)];
+        subtree_cost[static_cast<std::size_t>(parent_supernode[s])] += subtree_cost[s];
+      }
+    }
+    std::vector<int> candidates, assigned;
+    for(std::size_t s = 0; s < supernodes; ++s)
+      if(parent_supernode[s] == -1)
+        candidates.push_back(static_cast<int>(s));
+    std::vector<char> top(supernodes, 0);
+    auto costlier = [&](int a, int b) { return subtree_cost[a] > subtree_cost[b] || (subtree_cost[a] == subtree_cost[b] && a < b); };
+    bool balanced = false;
+    for(int round = 0; round < 64 && !candidates.empty(); ++round)
+    {
+      std::sort(candidates.begin(), candidates.end(), costlier);
+      double load[2] = {0., 0.};
+      assigned.assign(candidates.size(), 0);
+      for(std::size_t c = 0; c < candidates.size(); ++c)
+      {
+        assigned[c] = load[1] < load[0] ? 1 : 0;
+        load[assigned[c]] += subtree_cost[static_cast<std::size_t>(candidates[c])];
+      }
+      if(load[1] > 0. && std::max(load[0], load[1]) <= 0.55 * (load[0] + load[1]))
+      {
+        balanced = true;
+        break;
+      }
+      const int costliest = candidates.front();
+      if(child_supernodes[static_cast<std::size_t>(costliest)].empty())
+        break;
+      top[static_cast<std::size_t>(costliest)] = 1;
+      candidates.erase(candidates.begin());
+      candidates.insert(candidates.end(), child_supernodes[static_cast<std::size_t>(costliest)].begin(),
+                        child_supernodes[static_cast<std::size_t>(costliest)].end());
+    }
+    if(!balanced)
+      return;
+    std::vector<int> root_group(supernodes, -1);
+    for(std::size_t c = 0; c < candidates.size(); ++c)
+      root_group[static_cast<std::size_t>(candidates[c])] = assigned[c];
+    for(std::size_t s = supernodes; s-- > 0;) // parents first
+      m_group[s] = top[s] ? top_group
+                   : root_group[s] != -1 ? root_group[s]
+                                         : m_group[static_cast<std::size_t>(parent_supernode[s])];
+    m_top_offset.assign(supernodes, 0);
+    std::size_t top_size = 0;
+    for(std::size_t s = 0; s < supernodes; ++s)
+      if(m_group[s] == top_group)
+      {
+        m_top_offset[s] = top_size;
+        top_size += m_panel_start[s + 1] - m_panel_start[s];
+      }
+    m_buffer.assign(top_size, 0.);
+    m_split = true;
+  }
+
+  // What one thread of factorize_numeric() works with.
+  struct Workspace
+  {
+    std::vector<int> slot;
+    Eigen::MatrixXd update, positive, negative, scaled;
+  };
+
+  bool factorize_numeric()
+  {
+    if(!m_split)
+    {
+      Workspace all;
+      return eliminate_group(0, nullptr, all);
+    }
+    std::fill(m_buffer.begin(), m_buffer.end(), 0.);
+    bool done[2] = {false, false};
+    side_by_side(
+        m_parallel, [&]() { done[0] = eliminate_group(0, nullptr, m_workspaces[0]); },
+        [&]() { done[1] = eliminate_group(1, m_buffer.data(), m_workspaces[1]); });
+    if(!done[0] || !done[1])
+      return false;
+    for(std::size_t s = 0; s + 1 < m_first.size(); ++s)
+      if(m_group[s] == top_group)
+        for(std::size_t e = 0; e < m_panel_start[s + 1] - m_panel_start[s]; ++e)
+          m_values[m_panel_start[s] + e] += m_buffer[m_top_offset[s] + e];
+    return eliminate_group(top_group, nullptr, m_workspaces[0]);
+  }
+
+  // The supernodes of `group`, in order: each one's panel factorized, then its update of the rows below scattered
+  // into their supernodes' panels, those of the top into `top_buffer` when given (the second group of a split).
+  bool eliminate_group(int group, double* top_buffer, Workspace& workspace)
+  {
+    const std::size_t supernodes = m_first.size() - 1;
+    std::vector<int>& slot = workspace.slot;
+    slot.assign(static_cast<std::size_t>(m_size), -1);
+    Eigen::MatrixXd &update = workspace.update, &positive = workspace.positive, &negative = workspace.negative,
+                    &scaled = workspace.scaled;
+    for(std::size_t s = 0; s < supernodes; ++s)
+    {
+      if(m_group[s] != group)
+        continue;
       const Eigen::Index f = m_first[s], k = m_first[s + 1] - f, m = rows_of(s);
       Panel_map panel(m_values.data() + m_panel_start[s], m, k);
       // The panel's own columns (L D L^T of the diagonal block and the rows below it), by blocks of panel_block
@@ -407,8 +535,10 @@ private:
             slot[m_rows[q]] = static_cast<int>(q - m_row_start[target]);
         }
         const std::size_t height = m_row_start[target + 1] - m_row_start[target];
-        double* destination =
-            m_values.data() + m_panel_start[target] + static_cast<std::size_t>(column - m_first[target]) * height;
+        const std::size_t offset = static_cast<std::size_t>(column - m_first[target]) * height;
+        double* destination = top_buffer != nullptr && m_group[static_cast<std::size_t>(target)] == top_group
+                                   ? top_buffer + m_top_offset[static_cast<std::size_t>(target)] + offset
+                                   : m_values.data() + m_panel_start[target] + offset;
         for(Eigen::Index r = c; r < below; ++r)
           destination[slot[rows[r]]] -= update(r, c);
       }
@@ -417,7 +547,17 @@ private:
   }
 
   static constexpr Eigen::Index panel_block = 64; // 32 and 128 measured alike on bigbrain's pattern; 64 the fastest
+  // Patterns split in two from this size on (10,000 vertices of the least-distortion Hessians): below it, the second
+  // thread's start costs about what it saves.
+  static constexpr Eigen::Index split_min_unknowns = 20000;
+  static constexpr int top_group = -1;
   bool m_order_by_metis, m_lower;
+  bool m_parallel = false;
+  bool m_split = false;
+  std::vector<int> m_group;              // each supernode's group: 0, 1 or top_group (split_in_two)
+  std::vector<std::size_t> m_top_offset; // a top supernode's panel in m_buffer
+  std::vector<double> m_buffer;          // the second group's updates of the top
+  Workspace m_workspaces[2];
   int m_block_size;
   bool m_analyzed = false;
   Eigen::Index m_size = 0;

@@ -174,6 +174,9 @@ class Tangent_newton_system
 public:
   explicit Tangent_newton_system(const Sphere_system& system) : m_system(system) {}
 
+  // Whether the factorization of large systems splits its work between two threads (Supernodal_ldlt::set_parallel).
+  void set_parallel(bool parallel) { m_supernodal.set_parallel(parallel); }
+
   // Assembles and factorizes at x; false when the factorization fails.
   bool factorize(const std::vector<Vector3>& x)
   {
