@@ -556,16 +556,67 @@ inline int smooth_conformal_distortion(const std::vector<std::array<int, 3>>& tr
     }
     return 0.;
   };
+  // From Solver_tuning::side_by_side_min_vertices on, the sweeps visit the vertices by colours (greedy, in the order
+  // of the vertices: no two vertices of a face share one), each colour in the order of its vertices. The moves of
+  // one colour are independent (a move reads its ring and writes its vertex only), so with CGAL::Parallel_tag they
+  // are made on all threads, and the map is the same to the last bit either way (each move's decrease is added up
+  // in the sweep's order by one thread).
+  const bool coloured = n >= options.tuning.side_by_side_min_vertices;
+  const bool parallel = options.parallel && coloured;
+  std::vector<std::size_t> order(n), colour_starts{0, n};
+  for(std::size_t v = 0; v < n; ++v)
+    order[v] = v;
+  if(coloured)
+  {
+    std::vector<int> colour(n, -1);
+    std::vector<std::size_t> used; // used[c] == v + 1: colour c taken by a neighbour of v
+    int colours = 0;
+    for(std::size_t v = 0; v < n; ++v)
+    {
+      for(std::size_t c = offsets[v]; c < offsets[v + 1]; ++c)
+        for(int l = 0; l < 3; ++l)
+        {
+          const int other = colour[static_cast<std::size_t>(triangles[corners[c].first][l])];
+          if(other >= 0)
+            used[static_cast<std::size_t>(other)] = v + 1;
+        }
+      int c = 0;
+      while(c < colours && used[static_cast<std::size_t>(c)] == v + 1)
+        ++c;
+      if(c == colours)
+      {
+        ++colours;
+        used.push_back(0);
+      }
+      colour[v] = c;
+    }
+    colour_starts.assign(static_cast<std::size_t>(colours) + 1, 0);
+    for(std::size_t v = 0; v < n; ++v)
+      ++colour_starts[static_cast<std::size_t>(colour[v]) + 1];
+    for(int c = 0; c < colours; ++c)
+      colour_starts[static_cast<std::size_t>(c) + 1] += colour_starts[static_cast<std::size_t>(c)];
+    std::vector<std::size_t> fill_colour(colour_starts.begin(), colour_starts.end() - 1);
+    for(std::size_t v = 0; v < n; ++v)
+      order[fill_colour[static_cast<std::size_t>(colour[v])]++] = v;
+  }
   int sweep = 0;
-  std::vector<double> sigma(n, 0.);
+  std::vector<double> sigma(n, 0.), move_decrease(n, 0.);
   // The decrease of F of each sweep: the sum of its moves' local decreases (a move changes only its vertex's faces).
   double last_decrease = 0.;
   while(sweep < max_sweeps)
   {
     const double sweep_start = clock.time();
     double decrease = 0.;
-    for(std::size_t v = 0; v < n; ++v)
-      decrease += relax(v, sigma[v]);
+    for(std::size_t c = 0; c + 1 < colour_starts.size(); ++c)
+    {
+      const std::size_t first = colour_starts[c];
+      for_each_block(parallel, colour_starts[c + 1] - first, 64, [&](std::size_t begin, std::size_t end) {
+        for(std::size_t k = first + begin; k < first + end; ++k)
+          move_decrease[order[k]] = relax(order[k], sigma[order[k]]);
+      });
+    }
+    for(std::size_t k = 0; k < n; ++k)
+      decrease += move_decrease[order[k]];
     ++sweep;
     if(!(decrease > 0.) || (sweep > 1 && decrease >= stall * last_decrease) || options.cancel_requested()
        || next_part_passes_time_budget(options, clock, clock.time() - sweep_start))
