@@ -11,6 +11,11 @@
 // every Newton step. So the signals that ask a process to stop are blocked in the calling thread around every METIS
 // call; one that arrives meanwhile stays pending and reaches the application's own handler (or the default action)
 // as soon as the call returns.
+// METIS also keeps process-wide state between the start and the end of a call: the handlers it replaces (two calls at
+// once on two threads can leave its own handler installed for good) and GKlib's random numbers, which each call seeds
+// (orderings made at the same time would depend on the timing). Since the least-distortion minimization makes its
+// analyses ahead on a thread of its own (least_distortion.h), every METIS call of the package is made through
+// Metis_call_guard: one at a time in the process, with the stop signals held back.
 
 #ifndef CGAL_SPHERICAL_PARAMETERIZATION_INTERNAL_DEFERRED_STOP_SIGNALS_H
 #define CGAL_SPHERICAL_PARAMETERIZATION_INTERNAL_DEFERRED_STOP_SIGNALS_H
@@ -20,6 +25,8 @@
 #include <signal.h>
 #define CGAL_SPHERICAL_PARAMETERIZATION_HAS_SIGNAL_MASK 1
 #endif
+
+#include <mutex>
 
 namespace CGAL {
 namespace Spherical_parameterization {
@@ -55,6 +62,26 @@ private:
   sigset_t m_previous;
   bool m_blocked = false;
 #endif
+};
+
+// The mutex of the package's METIS calls (one object in the program: a function's static in an inline function).
+inline std::mutex& metis_mutex()
+{
+  static std::mutex mutex;
+  return mutex;
+}
+
+// RAII around a METIS call: the calls one at a time, the stop signals held back in this thread.
+class Metis_call_guard
+{
+public:
+  Metis_call_guard() : m_lock(metis_mutex()) {}
+  Metis_call_guard(const Metis_call_guard&) = delete;
+  Metis_call_guard& operator=(const Metis_call_guard&) = delete;
+
+private:
+  std::lock_guard<std::mutex> m_lock; // taken first: a thread waiting for it can still be stopped
+  Deferred_stop_signals m_deferred;
 };
 
 } // namespace internal

@@ -78,7 +78,7 @@ inline std::vector<idx_t> metis_vertex_separator(const Sphere_system& system, in
   if(user_options != nullptr)
     std::copy(user_options, user_options + METIS_NOPTIONS, options);
   idx_t separator_size = 0;
-  const Deferred_stop_signals deferred; // no stop signal lost inside METIS (see deferred_stop_signals.h)
+  const Metis_call_guard metis_call; // no stop signal lost inside METIS (see deferred_stop_signals.h)
   if(METIS_ComputeVertexSeparator(&n, xadj.data(), adjncy.data(), nullptr, options, &separator_size, part.data())
      != METIS_OK)
     return {};

@@ -39,8 +39,11 @@
 
 #include <algorithm>
 #include <array>
+#include <atomic>
 #include <cmath>
+#include <future>
 #include <limits>
+#include <memory>
 #include <vector>
 
 namespace CGAL {
@@ -240,14 +243,51 @@ inline bool face_shapes(const std::vector<std::array<int, 3>>& triangles, const 
 }
 
 // F face by face at z (`terms`) and its gradient along the three boosts, sum_i of the tangential part of grad_i F
-// (the boost field of e_l at z_i is e_l - (e_l . z_i) z_i); false if a face is not positive.
+// (the boost field of e_l at z_i is e_l - (e_l . z_i) z_i); false if a face is not positive. With `parallel` the
+// faces' terms are computed on all threads into `tangential` (each face's three corners' parts), then added up in the
+// order of the faces by one: the same sums, to the last bit, as on one thread.
 inline bool energy_and_boost_gradient(const std::vector<std::array<int, 3>>& triangles,
                                       const std::vector<Face_shape>& shapes, const std::vector<V3>& z,
-                                      std::vector<double>& terms, V3& gradient)
+                                      std::vector<double>& terms, V3& gradient, bool parallel = false,
+                                      std::vector<std::array<V3, 3>>* tangential = nullptr)
 {
   gradient.setZero();
-  terms.resize(triangles.size());
-  for(std::size_t f = 0; f < triangles.size(); ++f)
+  const std::size_t m = triangles.size();
+  terms.resize(m);
+  if(parallel && tangential != nullptr)
+  {
+    tangential->resize(m);
+    constexpr std::size_t grain = 256; // faces per task
+    for_each_block(true, m, grain, [&](std::size_t begin, std::size_t end) {
+      for(std::size_t f = begin; f < end; ++f)
+      {
+        V3 p[3];
+        for(int k = 0; k < 3; ++k)
+          p[k] = z[static_cast<std::size_t>(triangles[f][k])];
+        if(!(orientation(p[0], p[1], p[2]) > 0.))
+        {
+          terms[f] = std::numeric_limits<double>::infinity();
+          continue;
+        }
+        Vector9 g;
+        terms[f] = face_energy(shapes[f], p, &g);
+        for(int k = 0; k < 3; ++k)
+        {
+          const V3 gk = g.segment<3>(3 * k);
+          (*tangential)[f][k] = gk - gk.dot(p[k]) * p[k];
+        }
+      }
+    });
+    for(std::size_t f = 0; f < m; ++f)
+    {
+      if(terms[f] == std::numeric_limits<double>::infinity())
+        return false;
+      for(int k = 0; k < 3; ++k)
+        gradient += (*tangential)[f][k];
+    }
+    return true;
+  }
+  for(std::size_t f = 0; f < m; ++f)
   {
     V3 p[3];
     for(int k = 0; k < 3; ++k)
@@ -276,15 +316,17 @@ inline V3 retract(const V3& y, const V3& d)
 }
 
 // `out`: the map z moved by the boost with vector c (mobius.h's Boost, applied to every vertex).
-inline void boost_map(const std::vector<V3>& z, const V3& c, std::vector<V3>& out)
+inline void boost_map(const std::vector<V3>& z, const V3& c, std::vector<V3>& out, bool parallel = false)
 {
   const Boost boost(Vector3(c[0], c[1], c[2]));
   out.resize(z.size());
-  for(std::size_t i = 0; i < z.size(); ++i)
-  {
-    const Vector3 b = boost(Vector3(z[i][0], z[i][1], z[i][2]));
-    out[i] = V3(b.x, b.y, b.z);
-  }
+  for_each_block(parallel, z.size(), 1024, [&](std::size_t begin, std::size_t end) {
+    for(std::size_t i = begin; i < end; ++i)
+    {
+      const Vector3 b = boost(Vector3(z[i][0], z[i][1], z[i][2]));
+      out[i] = V3(b.x, b.y, b.z);
+    }
+  });
 }
 
 // F is nearly invariant under the Moebius boosts of the sphere (conformal maps: only the flat triangles through the
@@ -297,7 +339,8 @@ inline void boost_map(const std::vector<V3>& z, const V3& c, std::vector<V3>& ou
 // `reference` (what the last Newton step achieved; 0 before the first). Returns the number of boosts applied.
 inline std::size_t balance_distortion_boosts(const std::vector<std::array<int, 3>>& triangles,
                                              const std::vector<Face_shape>& shapes, std::vector<V3>& y,
-                                             int iterations, double share, double reference)
+                                             int iterations, double share, double reference,
+                                             bool parallel = false)
 {
   // A boost rounds every position again, which changes a face with edges of 1e-11 by eps / 1e-11 ~ 2e-5 of its size:
   // differences over boosts of 1e-5 were noise on a map with such faces (an indefinite Hessian), over 1e-3 they agree
@@ -305,9 +348,10 @@ inline std::size_t balance_distortion_boosts(const std::vector<std::array<int, 3
   const double difference_step = 1e-3;
   std::vector<double> terms, trial_terms;
   std::vector<V3> trial;
+  std::vector<std::array<V3, 3>> tangential; // energy_and_boost_gradient's buffer with `parallel`
   std::size_t applied = 0;
   V3 gradient;
-  if(!energy_and_boost_gradient(triangles, shapes, y, terms, gradient))
+  if(!energy_and_boost_gradient(triangles, shapes, y, terms, gradient, parallel, &tangential))
     return 0;
   for(int iteration = 0; iteration < iterations; ++iteration)
   {
@@ -315,8 +359,8 @@ inline std::size_t balance_distortion_boosts(const std::vector<std::array<int, 3
     for(int l = 0; l < 3; ++l)
     {
       V3 moved;
-      boost_map(y, difference_step * V3::Unit(l), trial);
-      if(!energy_and_boost_gradient(triangles, shapes, trial, trial_terms, moved))
+      boost_map(y, difference_step * V3::Unit(l), trial, parallel);
+      if(!energy_and_boost_gradient(triangles, shapes, trial, trial_terms, moved, parallel, &tangential))
         return applied;
       hessian.col(l) = (moved - gradient) / difference_step;
     }
@@ -340,8 +384,8 @@ inline std::size_t balance_distortion_boosts(const std::vector<std::array<int, 3
     bool accepted = false;
     for(int tries = 0; tries < 10 && !accepted; ++tries, t *= 0.5) // down to 1/512 of the step
     {
-      boost_map(y, t * step, trial);
-      if(!energy_and_boost_gradient(triangles, shapes, trial, trial_terms, next_gradient))
+      boost_map(y, t * step, trial, parallel);
+      if(!energy_and_boost_gradient(triangles, shapes, trial, trial_terms, next_gradient, parallel, &tangential))
         continue;
       double change = 0.; // face by face, as energy_change() in the minimization
       for(std::size_t f = 0; f < terms.size(); ++f)
@@ -665,6 +709,151 @@ inline int smooth_conformal_distortion(const std::vector<std::array<int, 3>>& tr
   return sweep;
 }
 
+// The Hessian's lower triangle has the same pattern at every step of a minimization: it is made once, with where each
+// face's 21 entries go in it (face_entries: each step adds the faces' entries there, face after face), and so is its
+// factorization's analysis (METIS' ordering and the symbolic factorization: the first factorization of bunny00's
+// Hessian took 0.39 s, the next ones 0.05 s). Distortion_patterns_ahead makes them ahead.
+struct Distortion_hessian_pattern
+{
+  static constexpr int entries_per_face = 21; // 3 diagonal 2x2 blocks' lower triangles, 3 blocks below the diagonal
+  Eigen::SparseMatrix<double> hessian;
+  std::vector<int> face_entries;
+  // Supernodal: 3 to 4 times faster than Eigen's simplicial LDLT on these Hessians; ordered by vertices (blocks of 2).
+  Supernodal_ldlt factorization{true, Eigen::Lower, 2};
+
+  // Whether this is the pattern of `triangles` on `n` vertices (made by make()).
+  bool fits(std::size_t n, std::size_t faces) const
+  {
+    return hessian.rows() == static_cast<Eigen::Index>(2 * n)
+           && face_entries.size() == static_cast<std::size_t>(entries_per_face) * faces;
+  }
+
+  // (row, col, local row, local col) of face f's entries, in order.
+  template <typename Visit>
+  static void for_each_face_entry(const std::array<int, 3>& face, Visit&& visit)
+  {
+    for(int a = 0; a < 3; ++a)
+      for(int b = 0; b < 3; ++b)
+        for(int r = 0; r < 2; ++r)
+          for(int s = 0; s < 2; ++s)
+          {
+            const int row = 2 * face[a] + r, col = 2 * face[b] + s;
+            if(row >= col)
+              visit(row, col, 2 * a + r, 2 * b + s);
+          }
+  }
+
+  // The pattern of `triangles` on `n` vertices, and with `analyze` its factorization's analysis (which the first
+  // factorization makes otherwise).
+  void make(const std::vector<std::array<int, 3>>& triangles, std::size_t n, bool analyze)
+  {
+    const std::size_t m = triangles.size();
+    {
+      std::vector<Eigen::Triplet<double>> entries;
+      entries.reserve(entries_per_face * m);
+      for(std::size_t f = 0; f < m; ++f)
+        for_each_face_entry(triangles[f], [&](int row, int col, int, int) { entries.emplace_back(row, col, 0.); });
+      hessian = Eigen::SparseMatrix<double>(static_cast<Eigen::Index>(2 * n), static_cast<Eigen::Index>(2 * n));
+      hessian.setFromTriplets(entries.begin(), entries.end());
+      hessian.makeCompressed();
+    }
+    face_entries.resize(entries_per_face * m);
+    const int* starts = hessian.outerIndexPtr();
+    const int* rows = hessian.innerIndexPtr();
+    for(std::size_t f = 0; f < m; ++f)
+    {
+      int k = 0;
+      for_each_face_entry(triangles[f], [&](int row, int col, int, int) {
+        face_entries[entries_per_face * f + k++] =
+            static_cast<int>(std::lower_bound(rows + starts[col], rows + starts[col + 1], row) - rows);
+      });
+    }
+    if(analyze)
+      factorization.analyze_pattern(hessian);
+  }
+};
+
+// The patterns of a sequence of minimizations (the multilevel start's levels, coarsest first, then the mesh: pattern
+// k is that of the k-th triangles given) made one after the other on a thread of their own while the caller
+// minimizes, from the start of the coarsest level's minimization on: its analysis and those of the finer levels leave
+// the path (bunny00 with mean-value weights: 0.5 s of 3.4 s). Only with CGAL::Parallel_tag. The patterns and
+// analyses are those the minimizations would make (METIS' calls one at a time: deferred_stop_signals.h), so the
+// iterates do not change. The mesh's triangles are read by the thread and must outlive this object (the destructor
+// waits for the thread); the levels' are copied.
+class Distortion_patterns_ahead
+{
+public:
+  Distortion_patterns_ahead() = default;
+  Distortion_patterns_ahead(const Distortion_patterns_ahead&) = delete;
+  Distortion_patterns_ahead& operator=(const Distortion_patterns_ahead&) = delete;
+  ~Distortion_patterns_ahead()
+  {
+    m_stop = true; // the patterns not begun are not made
+    if(m_thread.valid())
+      m_thread.wait();
+  }
+
+  bool started() const { return !m_made.empty(); }
+
+  // `levels`: the levels' triangles, coarsest first (copied), then those of the mesh (kept by address), on `sizes`
+  // vertices each.
+  void start(std::vector<std::vector<std::array<int, 3>>> levels, const std::vector<std::array<int, 3>>& mesh,
+             std::vector<std::size_t> sizes)
+  {
+    m_levels = std::move(levels);
+    m_mesh = &mesh;
+    m_sizes = std::move(sizes);
+    const std::size_t count = m_levels.size() + 1;
+    m_patterns.resize(count);
+    std::vector<std::promise<void>> promises(count);
+    for(std::promise<void>& promise : promises)
+      m_made.push_back(promise.get_future());
+    m_thread = std::async(std::launch::async, [this](std::vector<std::promise<void>> done) {
+      // No stop signal for this thread: while a METIS call of the calling thread holds them back, METIS' own handler
+      // is installed, and a signal delivered here would run it (deferred_stop_signals.h).
+      const Deferred_stop_signals hold_back;
+      for(std::size_t k = 0; k < done.size(); ++k)
+      {
+        if(!m_stop)
+        {
+          try
+          {
+            std::unique_ptr<Distortion_hessian_pattern> pattern(new Distortion_hessian_pattern());
+            pattern->make(k < m_levels.size() ? m_levels[k] : *m_mesh, m_sizes[k], true);
+            m_patterns[k] = std::move(pattern);
+          }
+          catch(...) // std::bad_alloc
+          {
+            m_patterns[k].reset(); // the minimization makes its own (and meets the shortage itself)
+          }
+        }
+        done[k].set_value();
+      }
+    }, std::move(promises));
+  }
+
+  // Pattern k once made (ownership passes to the caller), or nullptr: not started, or not made.
+  std::unique_ptr<Distortion_hessian_pattern> take(std::size_t k)
+  {
+    if(k >= m_made.size() || !m_made[k].valid())
+      return nullptr;
+    m_made[k].get();
+    return std::move(m_patterns[k]);
+  }
+
+  // The mesh's pattern (the last one).
+  std::unique_ptr<Distortion_hessian_pattern> take_mesh() { return take(m_levels.size()); }
+
+private:
+  std::vector<std::vector<std::array<int, 3>>> m_levels;
+  const std::vector<std::array<int, 3>>* m_mesh = nullptr;
+  std::vector<std::size_t> m_sizes;
+  std::vector<std::unique_ptr<Distortion_hessian_pattern>> m_patterns;
+  std::vector<std::future<void>> m_made;
+  std::future<void> m_thread;
+  std::atomic<bool> m_stop{false};
+};
+
 // Minimizes F from `x` (unit vectors, every face positive) over bijective maps; `x` holds the last iterate (each one
 // lower in F than the one before, except the steps judged on F's rounding, see below_noise). Stops when every vertex
 // is stationary, at `options.max_newton_sweeps`, the time budget, a cancel, or when no step lowers F any more.
@@ -681,7 +870,8 @@ inline Least_distortion_report minimize_conformal_distortion(const std::vector<s
                                                              const std::vector<Vector3>& points, std::vector<Vector3>& x,
                                                              const Iteration_options& options,
                                                              const CGAL::Real_timer& clock,
-                                                             double first_pass_seconds = 0.)
+                                                             double first_pass_seconds = 0.,
+                                                             std::unique_ptr<Distortion_hessian_pattern> pattern = nullptr)
 {
   using namespace least_distortion_detail;
   Least_distortion_report report;
@@ -706,10 +896,12 @@ inline Least_distortion_report minimize_conformal_distortion(const std::vector<s
   };
   // F(z) - F(y) face by face (the total would lose the small faces' changes), F(y)'s terms as the last assembly
   // computed them; +infinity if a face is not positive.
-  // With CGAL::Parallel_tag (from Solver_tuning::side_by_side_min_vertices on) the faces' terms of the line search,
-  // the assembly and the bound of the folds are computed on several threads and added up in order by one, so that
-  // every sum, and with them the iterates, are those of the sequential run to the last bit.
-  const bool parallel = options.parallel && x.size() >= options.tuning.side_by_side_min_vertices;
+  // With CGAL::Parallel_tag the faces' terms of the line search, the assembly, the bound of the folds and the boost
+  // balancing are computed on several threads and added up in order by one, so that every sum, and with them the
+  // iterates, are those of the sequential run to the last bit. On every level: a block of `grain` faces is a few
+  // hundred microseconds of work (a face's Hessian and its projection take about 2 microseconds), far above what
+  // handing it to another thread costs, and a mesh of fewer faces is one block, run by the caller.
+  const bool parallel = options.parallel;
   constexpr std::size_t grain = 256; // faces per task
   std::vector<double> current_terms(m, 0.), face_values(parallel ? m : 0);
   auto energy_change = [&](const std::vector<V3>& z) {
@@ -748,7 +940,7 @@ inline Least_distortion_report minimize_conformal_distortion(const std::vector<s
   report.started = true;
   const Solver_tuning& tuning = options.tuning;
   report.boosts += balance_distortion_boosts(triangles, shapes, y, tuning.least_distortion_boost_iterations,
-                                             tuning.least_distortion_boost_share, 0.);
+                                             tuning.least_distortion_boost_share, 0., parallel);
 
   const double floor_scale = 64. * std::numeric_limits<double>::epsilon();
   const double rounding_floor_factor = 8.;
@@ -758,41 +950,17 @@ inline Least_distortion_report minimize_conformal_distortion(const std::vector<s
   std::vector<int> edge_count(n);
   std::vector<double> row_abs(2 * n);
   Eigen::VectorXd gradient(2 * n);
-  // The Hessian's lower triangle has the same pattern at every pass: it is made once, with where each face's 21
-  // entries go in it (face_entries), and each pass adds the faces' entries there, face after face (the sums of the
-  // triplets' assembly, made anew at each pass before, with a fifth of its memory: 84 bytes a face instead of 336).
-  constexpr int entries_per_face = 21; // 3 diagonal 2x2 blocks' lower triangles, 3 blocks below the diagonal
-  auto for_each_face_entry = [&](std::size_t f, auto&& visit) { // (row, col, local row, local col), in order
-    for(int a = 0; a < 3; ++a)
-      for(int b = 0; b < 3; ++b)
-        for(int r = 0; r < 2; ++r)
-          for(int s = 0; s < 2; ++s)
-          {
-            const int row = 2 * triangles[f][a] + r, col = 2 * triangles[f][b] + s;
-            if(row >= col)
-              visit(row, col, 2 * a + r, 2 * b + s);
-          }
-  };
-  Eigen::SparseMatrix<double> hessian(2 * n, 2 * n);
-  std::vector<int> face_entries(entries_per_face * m);
+  constexpr int entries_per_face = Distortion_hessian_pattern::entries_per_face;
+  if(pattern == nullptr || !pattern->fits(x.size(), m))
   {
-    std::vector<Eigen::Triplet<double>> entries;
-    entries.reserve(entries_per_face * m);
-    for(std::size_t f = 0; f < m; ++f)
-      for_each_face_entry(f, [&](int row, int col, int, int) { entries.emplace_back(row, col, 0.); });
-    hessian.setFromTriplets(entries.begin(), entries.end());
-    hessian.makeCompressed();
-    const int* starts = hessian.outerIndexPtr();
-    const int* rows = hessian.innerIndexPtr();
-    for(std::size_t f = 0; f < m; ++f)
-    {
-      int k = 0;
-      for_each_face_entry(f, [&](int row, int col, int, int) {
-        face_entries[entries_per_face * f + k++] =
-            static_cast<int>(std::lower_bound(rows + starts[col], rows + starts[col + 1], row) - rows);
-      });
-    }
+    pattern.reset(new Distortion_hessian_pattern());
+    pattern->make(triangles, x.size(), false);
   }
+  Eigen::SparseMatrix<double>& hessian = pattern->hessian;
+  const std::vector<int>& face_entries = pattern->face_entries;
+  auto for_each_face_entry = [&](std::size_t f, auto&& visit) {
+    Distortion_hessian_pattern::for_each_face_entry(triangles[f], visit);
+  };
   // A face's share of a pass, computed on its own (on several threads with `parallel`), then added up in order.
   struct Face_pass
   {
@@ -804,8 +972,7 @@ inline Least_distortion_report minimize_conformal_distortion(const std::vector<s
   };
   constexpr std::size_t faces_per_batch = 16384;
   std::vector<Face_pass> batch(std::min(m, faces_per_batch));
-  // Supernodal: 3 to 4 times faster than Eigen's simplicial LDLT on these Hessians; ordered by vertices (blocks of 2).
-  Supernodal_ldlt factorization(true, Eigen::Lower, 2);
+  Supernodal_ldlt& factorization = pattern->factorization;
   factorization.set_parallel(parallel);
   double marquardt = 1e-6;
   const double marquardt_floor = options.tuning.least_distortion_marquardt_floor;
@@ -1092,9 +1259,11 @@ inline Least_distortion_report minimize_conformal_distortion(const std::vector<s
     double t = start, accepted = 0., decrease = 0.;
     for(int tries = 0; tries < 60 && slope < 0.; ++tries, t *= 0.5)
     {
-      for(int i = 0; i < n; ++i)
-        moved[i] = retract(y[i], t * direction[i]);
-      boost_map(moved, t * boost, trial);
+      for_each_block(parallel, static_cast<std::size_t>(n), 1024, [&](std::size_t begin, std::size_t end) {
+        for(std::size_t i = begin; i < end; ++i)
+          moved[i] = retract(y[i], t * direction[i]);
+      });
+      boost_map(moved, t * boost, trial, parallel);
       const double change = energy_change(trial);
       const bool judged_by_rounding = below_noise && t == first && change <= noise;
       if(change <= 1e-4 * t * slope || judged_by_rounding)
@@ -1129,7 +1298,7 @@ inline Least_distortion_report minimize_conformal_distortion(const std::vector<s
     // 21 steps on the mesh instead of 12; oded_scorpion 18 instead of 13).
     if(!(whole_hessian && accepted == first && boost.norm() > 0.))
       report.boosts += balance_distortion_boosts(triangles, shapes, y, tuning.least_distortion_boost_iterations,
-                                                 tuning.least_distortion_boost_share, decrease);
+                                                 tuning.least_distortion_boost_share, decrease, parallel);
     // Where the floor caps the steps: a full step at the floor, the shifts over half the model's curvature along it,
     // and F lowered by at least 0.8 times what the step before (also full, at the floor) lowered it: linear
     // convergence along a direction flatter than the floor. A marching-tetrahedra surface with thin arms

@@ -35,7 +35,7 @@ public:
   {
     if(!m_analyzed || A.rows() != m_rows || A.nonZeros() != m_nonzeros)
     {
-      const Deferred_stop_signals deferred; // METIS may order the unknowns (see deferred_stop_signals.h)
+      const Metis_call_guard metis_call; // METIS may order the unknowns (see deferred_stop_signals.h)
       m_solver.analyzePattern(A);
       m_analyzed = true;
       m_rows = A.rows();

@@ -83,7 +83,7 @@ inline std::vector<int> vertex_elimination_rank(const Sphere_system& system)
   idx_t options[METIS_NOPTIONS];
   METIS_SetDefaultOptions(options);
   options[METIS_OPTION_NUMBERING] = 0;
-  const Deferred_stop_signals deferred; // no stop signal lost inside METIS (see deferred_stop_signals.h)
+  const Metis_call_guard metis_call; // no stop signal lost inside METIS (see deferred_stop_signals.h)
   if(METIS_NodeND(&nv, xadj.data(), adjncy.data(), nullptr, options, perm.data(), iperm.data()) != METIS_OK)
     return rank;
   for(std::size_t i = 0; i < n; ++i)
