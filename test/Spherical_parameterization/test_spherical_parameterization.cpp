@@ -42,7 +42,6 @@
 #include <iostream>
 #include <limits>
 #include <map>
-#include <memory>
 #include <random>
 #include <set>
 #include <sstream>
@@ -1354,33 +1353,23 @@ TEST(LeastDistortion, MultilevelStart)
   EXPECT_LT(report.energy, start);
   EXPECT_TRUE(SPI::certify(arrays.triangles, x).bijective);
 
-  // On all threads, with the patterns and analyses made ahead on a thread of their own (Distortion_patterns_ahead):
-  // the same levels and the same map, to the last bit.
+  // On all threads (CGAL::Parallel_tag): the faces' terms and the boost balancing by blocks of faces on every level,
+  // added up in order by one thread: the same levels and the same map, to the last bit.
   SPI::Iteration_options on_all_threads = options;
   on_all_threads.parallel = true;
   std::vector<SPI::Vector3> y;
   SPI::Multilevel_least_distortion_report parallel_levels;
-  SPI::Distortion_patterns_ahead ahead;
   ASSERT_TRUE(SPI::multilevel_least_distortion_start(arrays.points, arrays.triangles, tutte_map, on_all_threads, clock,
-                                                     y, parallel_levels, &ahead));
-  EXPECT_TRUE(ahead.started());
+                                                     y, parallel_levels));
   ASSERT_EQ(parallel_levels.levels.size(), levels.levels.size());
   for(std::size_t l = 0; l < levels.levels.size(); ++l)
     EXPECT_EQ(parallel_levels.levels[l].newton_steps, levels.levels[l].newton_steps) << l;
   ASSERT_TRUE(y == from_start);
-  std::unique_ptr<SPI::Distortion_hessian_pattern> pattern = ahead.take_mesh();
-  ASSERT_TRUE(pattern != nullptr);
-  EXPECT_TRUE(pattern->fits(arrays.points.size(), arrays.triangles.size()));
-  EXPECT_TRUE(ahead.take_mesh() == nullptr); // taken once
-  const SPI::Least_distortion_report parallel_report = SPI::minimize_conformal_distortion(
-      arrays.triangles, arrays.points, y, on_all_threads, clock, 0., std::move(pattern));
+  const SPI::Least_distortion_report parallel_report =
+      SPI::minimize_conformal_distortion(arrays.triangles, arrays.points, y, on_all_threads, clock);
   EXPECT_EQ(parallel_report.newton_steps, report.newton_steps);
   EXPECT_EQ(parallel_report.energy, report.energy);
   EXPECT_TRUE(y == x);
-
-  // Left before its patterns are taken (a cancelled minimization), it stops after the one it is making.
-  SPI::Distortion_patterns_ahead left;
-  left.start({}, arrays.triangles, {arrays.points.size()});
 }
 
 // The multilevel start (the default on meshes of 20,000 vertices or more) and the paper's two-disk start reach the

@@ -908,13 +908,12 @@ private:
     double reached =
         x.empty() ? std::numeric_limits<double>::infinity() : conformal_distortion(m_system.triangles, m_mesh.points, x);
     Multilevel_least_distortion_report levels;
-    Distortion_patterns_ahead ahead; // with CGAL::Parallel_tag: the levels' and the mesh's analyses on a thread
     const bool multilevel = multilevel_least_distortion_start(
         m_mesh.points, m_system.triangles,
         [this](const Mesh_arrays& coarse, std::vector<Vector3>& z) {
           return uniform_map(coarse, coarse.triangles, true, z) && !m_cancelled;
         },
-        options, clock, other, levels, &ahead);
+        options, clock, other, levels);
     m_cancelled = m_cancelled || levels.cancelled;
     const bool stopped = levels.cancelled || levels.out_of_time;
     if(m_options.verbose)
@@ -948,8 +947,7 @@ private:
         levels.levels.empty() ? 0. : scaled_step_seconds(levels.levels.back(), m_system.number_of_vertices);
     Least_distortion_report report; // the time budget counts from `clock`'s start, Tutte's map included
     if(!m_cancelled && !levels.out_of_time && !past_time_budget(options, clock))
-      report = minimize_conformal_distortion(m_system.triangles, m_mesh.points, y, options, clock, first_step_seconds,
-                                             ahead.take_mesh());
+      report = minimize_conformal_distortion(m_system.triangles, m_mesh.points, y, options, clock, first_step_seconds);
     m_cancelled = m_cancelled || report.cancelled;
     if(m_options.verbose)
       std::cerr << "least distortion: " << (report.started ? "" : "not started, ") << report.newton_steps

@@ -13,9 +13,11 @@
 // as soon as the call returns.
 // METIS also keeps process-wide state between the start and the end of a call: the handlers it replaces (two calls at
 // once on two threads can leave its own handler installed for good) and GKlib's random numbers, which each call seeds
-// (orderings made at the same time would depend on the timing). Since the least-distortion minimization makes its
-// analyses ahead on a thread of its own (least_distortion.h), every METIS call of the package is made through
-// Metis_call_guard: one at a time in the process, with the stop signals held back.
+// (orderings made at the same time would depend on the timing). So every METIS call of the package is made through
+// Metis_call_guard: one at a time in the process (an application may map several meshes at once on its threads),
+// with the stop signals held back. The package makes its METIS calls on the calling thread only: while a call runs,
+// METIS' handler (a longjmp to that thread's own context) would be undefined behaviour on any other thread that takes
+// the signal.
 
 #ifndef CGAL_SPHERICAL_PARAMETERIZATION_INTERNAL_DEFERRED_STOP_SIGNALS_H
 #define CGAL_SPHERICAL_PARAMETERIZATION_INTERNAL_DEFERRED_STOP_SIGNALS_H

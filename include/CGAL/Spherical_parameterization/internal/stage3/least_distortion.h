@@ -39,11 +39,8 @@
 
 #include <algorithm>
 #include <array>
-#include <atomic>
 #include <cmath>
-#include <future>
 #include <limits>
-#include <memory>
 #include <vector>
 
 namespace CGAL {
@@ -242,48 +239,55 @@ inline bool face_shapes(const std::vector<std::array<int, 3>>& triangles, const 
   return true;
 }
 
+// A face's share of energy_and_boost_gradient() on several threads: whether it is positive, and the tangential parts
+// of its gradient at its corners.
+struct Face_boost_terms
+{
+  bool positive = false;
+  std::array<V3, 3> tangential;
+};
+
 // F face by face at z (`terms`) and its gradient along the three boosts, sum_i of the tangential part of grad_i F
 // (the boost field of e_l at z_i is e_l - (e_l . z_i) z_i); false if a face is not positive. With `parallel` the
-// faces' terms are computed on all threads into `tangential` (each face's three corners' parts), then added up in the
-// order of the faces by one: the same sums, to the last bit, as on one thread.
+// faces' terms are computed on all threads into `buffer`, then added up in the order of the faces by one: the same
+// sums, to the last bit, as on one thread.
 inline bool energy_and_boost_gradient(const std::vector<std::array<int, 3>>& triangles,
                                       const std::vector<Face_shape>& shapes, const std::vector<V3>& z,
                                       std::vector<double>& terms, V3& gradient, bool parallel = false,
-                                      std::vector<std::array<V3, 3>>* tangential = nullptr)
+                                      std::vector<Face_boost_terms>* buffer = nullptr)
 {
   gradient.setZero();
   const std::size_t m = triangles.size();
   terms.resize(m);
-  if(parallel && tangential != nullptr)
+  if(parallel && buffer != nullptr)
   {
-    tangential->resize(m);
+    buffer->resize(m);
     constexpr std::size_t grain = 256; // faces per task
     for_each_block(true, m, grain, [&](std::size_t begin, std::size_t end) {
       for(std::size_t f = begin; f < end; ++f)
       {
+        Face_boost_terms& out = (*buffer)[f];
         V3 p[3];
         for(int k = 0; k < 3; ++k)
           p[k] = z[static_cast<std::size_t>(triangles[f][k])];
-        if(!(orientation(p[0], p[1], p[2]) > 0.))
-        {
-          terms[f] = std::numeric_limits<double>::infinity();
+        out.positive = orientation(p[0], p[1], p[2]) > 0.;
+        if(!out.positive)
           continue;
-        }
         Vector9 g;
         terms[f] = face_energy(shapes[f], p, &g);
         for(int k = 0; k < 3; ++k)
         {
           const V3 gk = g.segment<3>(3 * k);
-          (*tangential)[f][k] = gk - gk.dot(p[k]) * p[k];
+          out.tangential[k] = gk - gk.dot(p[k]) * p[k];
         }
       }
     });
     for(std::size_t f = 0; f < m; ++f)
     {
-      if(terms[f] == std::numeric_limits<double>::infinity())
+      if(!(*buffer)[f].positive)
         return false;
       for(int k = 0; k < 3; ++k)
-        gradient += (*tangential)[f][k];
+        gradient += (*buffer)[f].tangential[k];
     }
     return true;
   }
@@ -348,10 +352,10 @@ inline std::size_t balance_distortion_boosts(const std::vector<std::array<int, 3
   const double difference_step = 1e-3;
   std::vector<double> terms, trial_terms;
   std::vector<V3> trial;
-  std::vector<std::array<V3, 3>> tangential; // energy_and_boost_gradient's buffer with `parallel`
+  std::vector<Face_boost_terms> buffer; // energy_and_boost_gradient's with `parallel`
   std::size_t applied = 0;
   V3 gradient;
-  if(!energy_and_boost_gradient(triangles, shapes, y, terms, gradient, parallel, &tangential))
+  if(!energy_and_boost_gradient(triangles, shapes, y, terms, gradient, parallel, &buffer))
     return 0;
   for(int iteration = 0; iteration < iterations; ++iteration)
   {
@@ -360,7 +364,7 @@ inline std::size_t balance_distortion_boosts(const std::vector<std::array<int, 3
     {
       V3 moved;
       boost_map(y, difference_step * V3::Unit(l), trial, parallel);
-      if(!energy_and_boost_gradient(triangles, shapes, trial, trial_terms, moved, parallel, &tangential))
+      if(!energy_and_boost_gradient(triangles, shapes, trial, trial_terms, moved, parallel, &buffer))
         return applied;
       hessian.col(l) = (moved - gradient) / difference_step;
     }
@@ -385,7 +389,7 @@ inline std::size_t balance_distortion_boosts(const std::vector<std::array<int, 3
     for(int tries = 0; tries < 10 && !accepted; ++tries, t *= 0.5) // down to 1/512 of the step
     {
       boost_map(y, t * step, trial, parallel);
-      if(!energy_and_boost_gradient(triangles, shapes, trial, trial_terms, next_gradient, parallel, &tangential))
+      if(!energy_and_boost_gradient(triangles, shapes, trial, trial_terms, next_gradient, parallel, &buffer))
         continue;
       double change = 0.; // face by face, as energy_change() in the minimization
       for(std::size_t f = 0; f < terms.size(); ++f)
@@ -711,8 +715,7 @@ inline int smooth_conformal_distortion(const std::vector<std::array<int, 3>>& tr
 
 // The Hessian's lower triangle has the same pattern at every step of a minimization: it is made once, with where each
 // face's 21 entries go in it (face_entries: each step adds the faces' entries there, face after face), and so is its
-// factorization's analysis (METIS' ordering and the symbolic factorization: the first factorization of bunny00's
-// Hessian took 0.39 s, the next ones 0.05 s). Distortion_patterns_ahead makes them ahead.
+// factorization's analysis (METIS' ordering and the symbolic factorization, made by the first factorization).
 struct Distortion_hessian_pattern
 {
   static constexpr int entries_per_face = 21; // 3 diagonal 2x2 blocks' lower triangles, 3 blocks below the diagonal
@@ -720,13 +723,6 @@ struct Distortion_hessian_pattern
   std::vector<int> face_entries;
   // Supernodal: 3 to 4 times faster than Eigen's simplicial LDLT on these Hessians; ordered by vertices (blocks of 2).
   Supernodal_ldlt factorization{true, Eigen::Lower, 2};
-
-  // Whether this is the pattern of `triangles` on `n` vertices (made by make()).
-  bool fits(std::size_t n, std::size_t faces) const
-  {
-    return hessian.rows() == static_cast<Eigen::Index>(2 * n)
-           && face_entries.size() == static_cast<std::size_t>(entries_per_face) * faces;
-  }
 
   // (row, col, local row, local col) of face f's entries, in order.
   template <typename Visit>
@@ -743,9 +739,8 @@ struct Distortion_hessian_pattern
           }
   }
 
-  // The pattern of `triangles` on `n` vertices, and with `analyze` its factorization's analysis (which the first
-  // factorization makes otherwise).
-  void make(const std::vector<std::array<int, 3>>& triangles, std::size_t n, bool analyze)
+  // The pattern of `triangles` on `n` vertices.
+  void make(const std::vector<std::array<int, 3>>& triangles, std::size_t n)
   {
     const std::size_t m = triangles.size();
     {
@@ -768,90 +763,7 @@ struct Distortion_hessian_pattern
             static_cast<int>(std::lower_bound(rows + starts[col], rows + starts[col + 1], row) - rows);
       });
     }
-    if(analyze)
-      factorization.analyze_pattern(hessian);
   }
-};
-
-// The patterns of a sequence of minimizations (the multilevel start's levels, coarsest first, then the mesh: pattern
-// k is that of the k-th triangles given) made one after the other on a thread of their own while the caller
-// minimizes, from the start of the coarsest level's minimization on: its analysis and those of the finer levels leave
-// the path (bunny00 with mean-value weights: 0.5 s of 3.4 s). Only with CGAL::Parallel_tag. The patterns and
-// analyses are those the minimizations would make (METIS' calls one at a time: deferred_stop_signals.h), so the
-// iterates do not change. The mesh's triangles are read by the thread and must outlive this object (the destructor
-// waits for the thread); the levels' are copied.
-class Distortion_patterns_ahead
-{
-public:
-  Distortion_patterns_ahead() = default;
-  Distortion_patterns_ahead(const Distortion_patterns_ahead&) = delete;
-  Distortion_patterns_ahead& operator=(const Distortion_patterns_ahead&) = delete;
-  ~Distortion_patterns_ahead()
-  {
-    m_stop = true; // the patterns not begun are not made
-    if(m_thread.valid())
-      m_thread.wait();
-  }
-
-  bool started() const { return !m_made.empty(); }
-
-  // `levels`: the levels' triangles, coarsest first (copied), then those of the mesh (kept by address), on `sizes`
-  // vertices each.
-  void start(std::vector<std::vector<std::array<int, 3>>> levels, const std::vector<std::array<int, 3>>& mesh,
-             std::vector<std::size_t> sizes)
-  {
-    m_levels = std::move(levels);
-    m_mesh = &mesh;
-    m_sizes = std::move(sizes);
-    const std::size_t count = m_levels.size() + 1;
-    m_patterns.resize(count);
-    std::vector<std::promise<void>> promises(count);
-    for(std::promise<void>& promise : promises)
-      m_made.push_back(promise.get_future());
-    m_thread = std::async(std::launch::async, [this](std::vector<std::promise<void>> done) {
-      // No stop signal for this thread: while a METIS call of the calling thread holds them back, METIS' own handler
-      // is installed, and a signal delivered here would run it (deferred_stop_signals.h).
-      const Deferred_stop_signals hold_back;
-      for(std::size_t k = 0; k < done.size(); ++k)
-      {
-        if(!m_stop)
-        {
-          try
-          {
-            std::unique_ptr<Distortion_hessian_pattern> pattern(new Distortion_hessian_pattern());
-            pattern->make(k < m_levels.size() ? m_levels[k] : *m_mesh, m_sizes[k], true);
-            m_patterns[k] = std::move(pattern);
-          }
-          catch(...) // std::bad_alloc
-          {
-            m_patterns[k].reset(); // the minimization makes its own (and meets the shortage itself)
-          }
-        }
-        done[k].set_value();
-      }
-    }, std::move(promises));
-  }
-
-  // Pattern k once made (ownership passes to the caller), or nullptr: not started, or not made.
-  std::unique_ptr<Distortion_hessian_pattern> take(std::size_t k)
-  {
-    if(k >= m_made.size() || !m_made[k].valid())
-      return nullptr;
-    m_made[k].get();
-    return std::move(m_patterns[k]);
-  }
-
-  // The mesh's pattern (the last one).
-  std::unique_ptr<Distortion_hessian_pattern> take_mesh() { return take(m_levels.size()); }
-
-private:
-  std::vector<std::vector<std::array<int, 3>>> m_levels;
-  const std::vector<std::array<int, 3>>* m_mesh = nullptr;
-  std::vector<std::size_t> m_sizes;
-  std::vector<std::unique_ptr<Distortion_hessian_pattern>> m_patterns;
-  std::vector<std::future<void>> m_made;
-  std::future<void> m_thread;
-  std::atomic<bool> m_stop{false};
 };
 
 // Minimizes F from `x` (unit vectors, every face positive) over bijective maps; `x` holds the last iterate (each one
@@ -870,8 +782,7 @@ inline Least_distortion_report minimize_conformal_distortion(const std::vector<s
                                                              const std::vector<Vector3>& points, std::vector<Vector3>& x,
                                                              const Iteration_options& options,
                                                              const CGAL::Real_timer& clock,
-                                                             double first_pass_seconds = 0.,
-                                                             std::unique_ptr<Distortion_hessian_pattern> pattern = nullptr)
+                                                             double first_pass_seconds = 0.)
 {
   using namespace least_distortion_detail;
   Least_distortion_report report;
@@ -951,13 +862,10 @@ inline Least_distortion_report minimize_conformal_distortion(const std::vector<s
   std::vector<double> row_abs(2 * n);
   Eigen::VectorXd gradient(2 * n);
   constexpr int entries_per_face = Distortion_hessian_pattern::entries_per_face;
-  if(pattern == nullptr || !pattern->fits(x.size(), m))
-  {
-    pattern.reset(new Distortion_hessian_pattern());
-    pattern->make(triangles, x.size(), false);
-  }
-  Eigen::SparseMatrix<double>& hessian = pattern->hessian;
-  const std::vector<int>& face_entries = pattern->face_entries;
+  Distortion_hessian_pattern pattern;
+  pattern.make(triangles, x.size());
+  Eigen::SparseMatrix<double>& hessian = pattern.hessian;
+  const std::vector<int>& face_entries = pattern.face_entries;
   auto for_each_face_entry = [&](std::size_t f, auto&& visit) {
     Distortion_hessian_pattern::for_each_face_entry(triangles[f], visit);
   };
@@ -972,7 +880,7 @@ inline Least_distortion_report minimize_conformal_distortion(const std::vector<s
   };
   constexpr std::size_t faces_per_batch = 16384;
   std::vector<Face_pass> batch(std::min(m, faces_per_batch));
-  Supernodal_ldlt& factorization = pattern->factorization;
+  Supernodal_ldlt& factorization = pattern.factorization;
   factorization.set_parallel(parallel);
   double marquardt = 1e-6;
   const double marquardt_floor = options.tuning.least_distortion_marquardt_floor;

@@ -76,8 +76,7 @@ bool multilevel_least_distortion_start(const std::vector<Vector3>& points,
                                        const std::vector<std::array<int, 3>>& triangles,
                                        const Coarsest_map& coarsest_map, const Iteration_options& options,
                                        const CGAL::Real_timer& clock, std::vector<Vector3>& x,
-                                       Multilevel_least_distortion_report& multilevel,
-                                       Distortion_patterns_ahead* ahead = nullptr)
+                                       Multilevel_least_distortion_report& multilevel)
 {
   const Solver_tuning& tuning = options.tuning;
   multilevel = Multilevel_least_distortion_report();
@@ -100,20 +99,6 @@ bool multilevel_least_distortion_start(const std::vector<Vector3>& points,
   }
   if(hierarchy.empty())
     return false;
-  // With CGAL::Parallel_tag, the Hessians' patterns and analyses of the levels and of the mesh are made on a thread of
-  // their own, coarsest first (Distortion_patterns_ahead: `ahead`, the caller's, which keeps the mesh's).
-  if(ahead != nullptr && options.parallel && !ahead->started())
-  {
-    std::vector<std::vector<std::array<int, 3>>> levels;
-    std::vector<std::size_t> sizes;
-    for(std::size_t level = hierarchy.size(); level > 0; --level)
-    {
-      levels.push_back(level_triangles(level));
-      sizes.push_back(level_points(level).size());
-    }
-    sizes.push_back(points.size());
-    ahead->start(std::move(levels), triangles, std::move(sizes));
-  }
   std::vector<Vector3> y;
   if(!coarsest_map(hierarchy.back().coarse, y) || y.size() != hierarchy.back().coarse.points.size())
   {
@@ -128,9 +113,8 @@ bool multilevel_least_distortion_start(const std::vector<Vector3>& points,
     const double start_time = clock.time();
     const double first_step_seconds =
         multilevel.levels.empty() ? 0. : scaled_step_seconds(multilevel.levels.back(), y.size());
-    const Least_distortion_report report =
-        minimize_conformal_distortion(level_triangles(level), level_points(level), y, level_options, clock,
-                                      first_step_seconds, ahead ? ahead->take(hierarchy.size() - level) : nullptr);
+    const Least_distortion_report report = minimize_conformal_distortion(level_triangles(level), level_points(level), y,
+                                                                         level_options, clock, first_step_seconds);
     if(!report.started)
       return false;
     if(report.cancelled || report.out_of_time)

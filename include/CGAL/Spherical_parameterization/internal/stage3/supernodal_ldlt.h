@@ -63,15 +63,6 @@ public:
   // Whether the two groups of a split pattern are factorized by two threads (the factor is the same either way).
   void set_parallel(bool parallel) { m_parallel = parallel; }
 
-  // The analysis alone (the ordering and the symbolic factorization) of the pattern of `matrix` (compressed), which
-  // factorize() then skips for that pattern: it can be made ahead, on another thread (least_distortion.h's
-  // Distortion_patterns_ahead). The factor's values are allocated by the first factorization. False where it fails
-  // (factorize() then tries again).
-  bool analyze_pattern(const Eigen::SparseMatrix<double>& matrix)
-  {
-    return (m_analyzed && has_analyzed_pattern(matrix)) || analyze(matrix);
-  }
-
   // False when a pivot is zero or not finite (as Eigen's SimplicialLDLT, which does not pivot either).
   bool factorize(const Eigen::SparseMatrix<double>& matrix)
   {
@@ -87,7 +78,7 @@ public:
       if(!analyze(A))
         return false;
     }
-    m_values.assign(m_panel_start.back(), 0.); // allocated at the first factorization of the pattern
+    std::fill(m_values.begin(), m_values.end(), 0.);
     const double* a = A.valuePtr();
     for(std::size_t k = 0; k < m_scatter.size(); ++k)
       if(m_scatter[k] != skipped)
@@ -333,7 +324,7 @@ private:
       m_panel_start.push_back(m_panel_start.back() + rows.size() * static_cast<std::size_t>(l - f + 1));
     }
     split_in_two(parent, owner, child_supernodes);
-    m_values.clear(); // allocated by factorize(): an analysis made ahead holds no values
+    m_values.assign(m_panel_start.back(), 0.);
     m_pivots.resize(n);
     // Where each stored entry of A's lower triangle goes in the panels.
     m_scatter.assign(static_cast<std::size_t>(A.nonZeros()), skipped);
