@@ -46,6 +46,7 @@
 #include <set>
 #include <sstream>
 #include <string>
+#include <thread>
 #include <vector>
 
 namespace SP = CGAL::Spherical_parameterization;
@@ -1079,6 +1080,55 @@ TEST(SupernodalLdlt, SplitPatternGivesTheSameFactorOnOneOrTwoThreads)
     EXPECT_EQ((one_thread.pivots().array() < 0.).count(), (eigen.vectorD().array() < 0.).count()) << "shift " << shift;
     if(shift > 0.)
       EXPECT_GT((eigen.vectorD().array() < 0.).count(), 0);
+  }
+}
+
+// A stop asked between the supernodes (Supernodal_ldlt::set_stop, so that a cancel or a time budget need not wait
+// for a factorization of seconds): asked on the calling thread only, also with the two groups on two threads; true
+// abandons the factorization, and the next one, without a stop, gives the factor of a factorization never stopped, to
+// the last bit. A stop that never says yes leaves the factor unchanged.
+TEST(SupernodalLdlt, StopAbandonsTheFactorizationAndOnlyTheCallerIsAsked)
+{
+  const SPI::Mesh_arrays arrays = arrays_of(read_mesh(cgal_data + "/bunny00.off")); // 37,706 vertices: split
+  const SPI::Sphere_system system = system_of(arrays);
+  const int n = 2 * static_cast<int>(system.number_of_vertices);
+  const Eigen::SparseMatrix<double> lower = vertex_block_matrix(system, 0.);
+  Eigen::VectorXd b(n);
+  for(int i = 0; i < n; ++i)
+    b[i] = std::cos(0.7 * i);
+  SPI::Supernodal_ldlt reference(true, Eigen::Lower, 2);
+  ASSERT_TRUE(reference.factorize(lower));
+  Eigen::VectorXd expected = b;
+  reference.solve_in_place(expected);
+  const std::thread::id caller = std::this_thread::get_id();
+  for(const bool parallel : {false, true})
+  {
+    SPI::Supernodal_ldlt factorization(true, Eigen::Lower, 2);
+    factorization.set_parallel(parallel);
+    int asked = 0;
+    std::atomic<bool> asked_elsewhere{false};
+    factorization.set_stop([&]() {
+      if(std::this_thread::get_id() != caller)
+        asked_elsewhere = true;
+      return ++asked >= 3;
+    });
+    EXPECT_FALSE(factorization.factorize(lower)) << "parallel " << parallel;
+    EXPECT_TRUE(factorization.stopped()) << "parallel " << parallel;
+    EXPECT_EQ(asked, 3) << "parallel " << parallel;
+    factorization.set_stop([&]() {
+      if(std::this_thread::get_id() != caller)
+        asked_elsewhere = true;
+      ++asked;
+      return false;
+    });
+    ASSERT_TRUE(factorization.factorize(lower)) << "parallel " << parallel;
+    EXPECT_FALSE(factorization.stopped()) << "parallel " << parallel;
+    EXPECT_GT(asked, 3) << "parallel " << parallel;
+    EXPECT_FALSE(asked_elsewhere) << "parallel " << parallel;
+    Eigen::VectorXd x = b;
+    factorization.solve_in_place(x);
+    EXPECT_TRUE(x == expected) << "parallel " << parallel;
+    EXPECT_TRUE(factorization.pivots() == reference.pivots()) << "parallel " << parallel;
   }
 }
 

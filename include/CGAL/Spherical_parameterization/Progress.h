@@ -19,7 +19,7 @@ namespace Spherical_parameterization {
 /// What the `progress_callback` named parameter receives: once after stage 1 (the two-disk initial guess; with the
 /// multilevel start, after the coarsest level's, and again after a finer level's own two-disk guess where the level
 /// below it failed), then after every iteration of stages 2 and 3 that gave a new iterate, on every level (and,
-/// inside an iteration that lasts, the last report again with its time updated, at most every half second).
+/// inside an iteration that lasts, the last report again with its time updated, at most every tenth of a second).
 struct Progress
 {
   /// "initial guess", "gauss-seidel", "global newton", "local newton", "weight continuation" (the global Newton

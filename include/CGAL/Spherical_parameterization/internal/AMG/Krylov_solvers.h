@@ -323,10 +323,14 @@ Krylov_result gmres(const Compressed_row_matrix& A, const double* b, double* x, 
 // Preconditioned MINRES (Paige and Saunders, 1975) for a symmetric, possibly indefinite operator with a symmetric
 // positive definite preconditioner, matrix-free: apply_operator(in, out) and apply_preconditioner(in, out) on arrays
 // of n values. Starts from x = 0 and stops when the preconditioned residual norm sqrt(r^T M^{-1} r) falls to
-// relative_tolerance times its initial value (a monotone estimate that MINRES updates for free).
+// relative_tolerance times its initial value (a monotone estimate that MINRES updates for free). `stop`, when given,
+// is asked after every iteration that did not converge: true ends the solve (Krylov_result::stopped; x is the
+// iterate reached), so that a cancel or a time budget need not wait for a solve of seconds (bigbrain's first Newton
+// step with cotangent weights: 99 iterations, 5.5 s).
 template <class Operator, class Preconditioner>
 Krylov_result minres(Operator& apply_operator, Preconditioner& apply_preconditioner, const double* b, double* x,
-                     Index n, double relative_tolerance, int max_iterations, Krylov_workspace& workspace)
+                     Index n, double relative_tolerance, int max_iterations, Krylov_workspace& workspace,
+                     const std::function<bool()>& stop = {})
 {
   auto [r1, r2, y, v, w, w1, w2] = workspace.first<7>(n);
   Krylov_result result;
@@ -392,6 +396,11 @@ Krylov_result minres(Operator& apply_operator, Preconditioner& apply_preconditio
     if(result.relative_residual <= relative_tolerance || beta == 0.)
     {
       result.converged = true;
+      return result;
+    }
+    if(stop && stop())
+    {
+      result.stopped = true;
       return result;
     }
   }

@@ -259,52 +259,45 @@ inline bool energy_and_boost_gradient(const std::vector<std::array<int, 3>>& tri
   gradient.setZero();
   const std::size_t m = triangles.size();
   terms.resize(m);
+  auto face_terms = [&](std::size_t f, Face_boost_terms& out) {
+    V3 p[3];
+    for(int k = 0; k < 3; ++k)
+      p[k] = z[static_cast<std::size_t>(triangles[f][k])];
+    out.positive = orientation(p[0], p[1], p[2]) > 0.;
+    if(!out.positive)
+      return;
+    Vector9 g;
+    terms[f] = face_energy(shapes[f], p, &g);
+    for(int k = 0; k < 3; ++k)
+    {
+      const V3 gk = g.segment<3>(3 * k);
+      out.tangential[k] = gk - gk.dot(p[k]) * p[k];
+    }
+  };
+  auto add_up = [&](const Face_boost_terms& face) {
+    for(int k = 0; k < 3 && face.positive; ++k)
+      gradient += face.tangential[k];
+    return face.positive;
+  };
   if(parallel && buffer != nullptr)
   {
     buffer->resize(m);
     constexpr std::size_t grain = 256; // faces per task
     for_each_block(true, m, grain, [&](std::size_t begin, std::size_t end) {
       for(std::size_t f = begin; f < end; ++f)
-      {
-        Face_boost_terms& out = (*buffer)[f];
-        V3 p[3];
-        for(int k = 0; k < 3; ++k)
-          p[k] = z[static_cast<std::size_t>(triangles[f][k])];
-        out.positive = orientation(p[0], p[1], p[2]) > 0.;
-        if(!out.positive)
-          continue;
-        Vector9 g;
-        terms[f] = face_energy(shapes[f], p, &g);
-        for(int k = 0; k < 3; ++k)
-        {
-          const V3 gk = g.segment<3>(3 * k);
-          out.tangential[k] = gk - gk.dot(p[k]) * p[k];
-        }
-      }
+        face_terms(f, (*buffer)[f]);
     });
     for(std::size_t f = 0; f < m; ++f)
-    {
-      if(!(*buffer)[f].positive)
+      if(!add_up((*buffer)[f]))
         return false;
-      for(int k = 0; k < 3; ++k)
-        gradient += (*buffer)[f].tangential[k];
-    }
     return true;
   }
+  Face_boost_terms face;
   for(std::size_t f = 0; f < m; ++f)
   {
-    V3 p[3];
-    for(int k = 0; k < 3; ++k)
-      p[k] = z[static_cast<std::size_t>(triangles[f][k])];
-    if(!(orientation(p[0], p[1], p[2]) > 0.))
+    face_terms(f, face);
+    if(!add_up(face))
       return false;
-    Vector9 g;
-    terms[f] = face_energy(shapes[f], p, &g);
-    for(int k = 0; k < 3; ++k)
-    {
-      const V3 gk = g.segment<3>(3 * k);
-      gradient += gk - gk.dot(p[k]) * p[k];
-    }
   }
   return true;
 }
@@ -882,6 +875,12 @@ inline Least_distortion_report minimize_conformal_distortion(const std::vector<s
   std::vector<Face_pass> batch(std::min(m, faces_per_batch));
   Supernodal_ldlt& factorization = pattern.factorization;
   factorization.set_parallel(parallel);
+  // Asked between the factorization's supernodes (a step of a brain cortex factorizes for a second or more).
+  bool factorization_cancelled = false;
+  factorization.set_stop([&]() {
+    factorization_cancelled = factorization_cancelled || options.cancel_requested();
+    return factorization_cancelled || past_time_budget(options, clock);
+  });
   double marquardt = 1e-6;
   const double marquardt_floor = options.tuning.least_distortion_marquardt_floor;
   // The floor and the shift always added (against the rotations' null space) are both scaled by floor_factor,
@@ -1025,8 +1024,8 @@ inline Least_distortion_report minimize_conformal_distortion(const std::vector<s
       report.cancelled = true;
       break;
     }
-    // A step (a factorization: seconds on brain cortices) cannot be interrupted: none is started that the last
-    // pass's duration says would end past the budget.
+    // A step that the budget ends during its factorization (seconds on brain cortices) is lost: none is started that
+    // the last pass's duration says would end past the budget.
     if(past_time_budget(options, clock)
        || next_part_passes_time_budget(options, clock, last_pass_seconds))
     {
@@ -1051,6 +1050,11 @@ inline Least_distortion_report minimize_conformal_distortion(const std::vector<s
     for(int i = 0; i < 2 * n; ++i)
       hessian.coeffRef(i, i) += shift;
     const bool factorized = factorization.factorize(hessian);
+    if(factorization.stopped())
+    {
+      (factorization_cancelled ? report.cancelled : report.out_of_time) = true;
+      break;
+    }
     if(whole_hessian && !factorized)
     {
       whole_hessian = false; // the projected Hessians again

@@ -122,6 +122,14 @@ inline Iteration_report mobius_newton(Sphere_state& state, const Iteration_optio
   const Sphere_system& system = state.system();
   const std::size_t n = system.number_of_vertices;
   std::vector<Vector3>& x = state.positions();
+  // MINRES asks this after every iteration, the factorization between its supernodes: a solve can take seconds
+  // (bigbrain's first step with cotangent weights: 99 MINRES iterations, 5.5 s; each factorized step after it 1.8 s),
+  // longer than the command line waits for a stop signal to be taken (1.2 s).
+  bool solve_cancelled = false;
+  auto stop_solve = [&]() {
+    solve_cancelled = solve_cancelled || options.cancel_requested();
+    return solve_cancelled || past_time_budget(options, clock);
+  };
   Tangent_newton_system newton(system);
   // The full-step phase on large meshes solves iteratively; the bijectivity-preserving steps keep the factorization,
   // whose gauge they were tuned with (see Tangent_newton_system::solve), except from a map carried back from a
@@ -142,6 +150,7 @@ inline Iteration_report mobius_newton(Sphere_state& state, const Iteration_optio
                    && (positive_weights || boost_aim == Boost_aim::ROOT);
   const bool parallel = options.parallel && n >= tuning.side_by_side_min_vertices; // side_by_side.h
   newton.set_parallel(parallel);
+  newton.set_stop(stop_solve);
   Tangent_krylov_system krylov(system, iterative && options.preconditioner_ahead != nullptr
                                            ? options.preconditioner_ahead->get(system)
                                            : nullptr);
@@ -207,16 +216,26 @@ inline Iteration_report mobius_newton(Sphere_state& state, const Iteration_optio
     if(iterative)
     {
       const bool assembled = krylov.assemble(x);
-      has_step = assembled && krylov.solve(step, forcing, tuning.newton_max_minres_iterations);
+      has_step = assembled && krylov.solve(step, forcing, tuning.newton_max_minres_iterations, stop_solve);
       if(assembled) // otherwise last_iterations() is the previous solve's
       {
         counts.linear_iterations += static_cast<std::size_t>(krylov.last_iterations());
         last_minres_iterations = krylov.last_iterations();
+        if(krylov.stopped())
+        {
+          (solve_cancelled ? driver.report().cancelled : driver.report().out_of_time) = true;
+          break;
+        }
       }
     }
     else
     {
       has_step = newton.factorize(x) && newton.solve(step, allow_folds);
+      if(newton.stopped())
+      {
+        (solve_cancelled ? driver.report().cancelled : driver.report().out_of_time) = true;
+        break;
+      }
     }
     if(!driver.within_budget())
       break;

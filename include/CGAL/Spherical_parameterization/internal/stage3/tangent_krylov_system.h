@@ -34,6 +34,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstddef>
+#include <functional>
 #include <vector>
 
 namespace CGAL {
@@ -75,8 +76,10 @@ public:
   }
 
   // Newton's step as tangent vectors, with the linear residual reduced by `relative_tolerance` (preconditioned
-  // norm); false when MINRES breaks down or the step is not finite.
-  bool solve(std::vector<Vector3>& step, double relative_tolerance, int max_iterations = 500)
+  // norm); false when MINRES breaks down, the step is not finite, or `stop` (asked after every iteration) ended the
+  // solve (then stopped() is true).
+  bool solve(std::vector<Vector3>& step, double relative_tolerance, int max_iterations = 500,
+             const std::function<bool()>& stop = {})
   {
     const std::size_t n = m_system.number_of_vertices;
     const AMG::Index size = static_cast<AMG::Index>(2 * n);
@@ -84,9 +87,12 @@ public:
     auto apply_operator = [this](const double* in, double* out) { multiply(in, out); };
     auto apply_preconditioner = [this](const double* in, double* out) { precondition(in, out); };
     const AMG::Krylov_result result = AMG::minres(apply_operator, apply_preconditioner, m_rhs.data(), m_solution.data(),
-                                                  size, relative_tolerance, max_iterations, m_workspace);
+                                                  size, relative_tolerance, max_iterations, m_workspace, stop);
     m_last_iterations = result.iterations;
     m_last_relative_residual = result.relative_residual;
+    m_stopped = result.stopped;
+    if(m_stopped)
+      return false;
     step.resize(n);
     for(std::size_t i = 0; i < n; ++i)
     {
@@ -98,6 +104,7 @@ public:
   }
 
   int last_iterations() const { return m_last_iterations; }
+  bool stopped() const { return m_stopped; }
   double last_relative_residual() const { return m_last_relative_residual; }
 
 private:
@@ -140,6 +147,7 @@ private:
   AMG::Krylov_workspace m_workspace;
   int m_last_iterations = 0;
   double m_last_relative_residual = 0.;
+  bool m_stopped = false;
 };
 
 } // namespace internal

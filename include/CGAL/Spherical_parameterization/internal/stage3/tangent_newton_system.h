@@ -36,6 +36,7 @@
 #include <array>
 #include <cmath>
 #include <cstddef>
+#include <functional>
 #include <numeric>
 #include <vector>
 
@@ -176,6 +177,12 @@ public:
 
   // Whether the factorization of large systems splits its work between two threads (Supernodal_ldlt::set_parallel).
   void set_parallel(bool parallel) { m_supernodal.set_parallel(parallel); }
+  // Asked during the factorization of large systems (Supernodal_ldlt::set_stop); stopped(): the last one was abandoned.
+  void set_stop(std::function<bool()> stop) { m_supernodal.set_stop(std::move(stop)); }
+  bool stopped() const
+  {
+    return m_system.number_of_vertices >= nested_dissection_min_vertices && m_supernodal.stopped();
+  }
 
   // Assembles and factorizes at x; false when the factorization fails.
   bool factorize(const std::vector<Vector3>& x)
