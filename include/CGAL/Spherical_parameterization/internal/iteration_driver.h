@@ -91,6 +91,15 @@ inline bool past_time_budget(const Iteration_options& options, const CGAL::Real_
   return options.max_seconds >= 0. && clock.time() > options.max_seconds;
 }
 
+// What a part that asks often (a MINRES solve between its iterations, a factorization between its supernodes) is told:
+// stop on a cancel, which `cancelled` remembers (the poll behind it answers at most every tenth of a second), or past
+// the time budget.
+inline bool stop_requested(const Iteration_options& options, const CGAL::Real_timer& clock, bool& cancelled)
+{
+  cancelled = cancelled || options.cancel_requested();
+  return cancelled || past_time_budget(options, clock);
+}
+
 // Whether a part that cannot be interrupted (a factorization, a sweep), as long as the last one (`last_seconds`),
 // would end past the time budget if started now.
 inline bool next_part_passes_time_budget(const Iteration_options& options, const CGAL::Real_timer& clock,

@@ -877,10 +877,7 @@ inline Least_distortion_report minimize_conformal_distortion(const std::vector<s
   factorization.set_parallel(parallel);
   // Asked between the factorization's supernodes (a step of a brain cortex factorizes for a second or more).
   bool factorization_cancelled = false;
-  factorization.set_stop([&]() {
-    factorization_cancelled = factorization_cancelled || options.cancel_requested();
-    return factorization_cancelled || past_time_budget(options, clock);
-  });
+  factorization.set_stop([&]() { return stop_requested(options, clock, factorization_cancelled); });
   double marquardt = 1e-6;
   const double marquardt_floor = options.tuning.least_distortion_marquardt_floor;
   // The floor and the shift always added (against the rotations' null space) are both scaled by floor_factor,

@@ -126,10 +126,7 @@ inline Iteration_report mobius_newton(Sphere_state& state, const Iteration_optio
   // (bigbrain's first step with cotangent weights: 99 MINRES iterations, 5.5 s; each factorized step after it 1.8 s),
   // longer than the command line waits for a stop signal to be taken (1.2 s).
   bool solve_cancelled = false;
-  auto stop_solve = [&]() {
-    solve_cancelled = solve_cancelled || options.cancel_requested();
-    return solve_cancelled || past_time_budget(options, clock);
-  };
+  auto stop_solve = [&]() { return stop_requested(options, clock, solve_cancelled); };
   Tangent_newton_system newton(system);
   // The full-step phase on large meshes solves iteratively; the bijectivity-preserving steps keep the factorization,
   // whose gauge they were tuned with (see Tangent_newton_system::solve), except from a map carried back from a
