@@ -1070,6 +1070,22 @@ TEST(SupernodalLdlt, SplitPatternGivesTheSameFactorOnOneOrTwoThreads)
     two_threads.solve_in_place(y);
     EXPECT_TRUE(x == y) << "shift " << shift;
     EXPECT_TRUE(one_thread.pivots() == two_threads.pivots()) << "shift " << shift;
+    // Several right-hand sides at once (the factor read once for all, as Tangent_newton_system::solve does for the
+    // step and the three rotation fields): each solved to the last bit as alone, with D and with |D|.
+    for(const bool absolute_pivots : {false, true})
+    {
+      const Eigen::VectorXd right_hand_sides[3] = {b, b.reverse(), b.cwiseProduct(b)};
+      Eigen::VectorXd together[3] = {right_hand_sides[0], right_hand_sides[1], right_hand_sides[2]};
+      Eigen::VectorXd* pointers[3] = {&together[0], &together[1], &together[2]};
+      one_thread.solve_in_place(pointers, 3, absolute_pivots, 1e-12);
+      for(int c = 0; c < 3; ++c)
+      {
+        Eigen::VectorXd alone = right_hand_sides[c];
+        one_thread.solve_in_place(alone, absolute_pivots, 1e-12);
+        EXPECT_TRUE(together[c] == alone) << "shift " << shift << ", right-hand side " << c << ", |D| "
+                                          << absolute_pivots;
+      }
+    }
     // As accurate as Eigen's factorization (the indefinite matrix is ill-conditioned: 1e-10 relative is too tight).
     Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>, Eigen::Lower> eigen(lower);
     ASSERT_EQ(eigen.info(), Eigen::Success);

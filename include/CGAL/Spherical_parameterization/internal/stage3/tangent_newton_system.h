@@ -265,46 +265,57 @@ public:
   // the gauge drops, all of it at two vertices. That would make the step ascend there. Instead the step solves
   // J d = -F - R mu, with R mu the infinitesimal rotation field mu x x_i (smooth, spread over every vertex, and
   // orthogonal to F by the same identity, so the step still descends on sum |F_i|^2), mu chosen so that the dropped
-  // equations hold too: three more back-substitutions with the same factorization. `consistent_rotations`: false
-  // keeps the plain gauge, whose steps the bijectivity-preserving Newton and the weight continuation were tuned
-  // with (with the correction the continuation stalls on cow's admissible cotangent weights, and Res no longer
-  // falls quadratically at the end: unit tests).
+  // equations hold too: three more back-substitutions with the same factorization, made in the step's own pass over
+  // it. `consistent_rotations`: false keeps the plain gauge, whose steps the bijectivity-preserving Newton and the
+  // weight continuation were tuned with (with the correction the continuation stalls on cow's admissible cotangent
+  // weights, and Res no longer falls quadratically at the end: unit tests).
   bool solve(std::vector<Vector3>& step, bool consistent_rotations = true)
   {
     const std::size_t n = m_system.number_of_vertices;
     Eigen::VectorXd solution = m_rhs;
-    if(!solve_in_place(solution))
-      return false;
     const std::size_t m = m_pinned_rows.size();
-    if(consistent_rotations && m == 3 && m_x != nullptr)
+    const bool rotations = consistent_rotations && m == 3 && m_x != nullptr;
+    // The rotation fields' right-hand sides (their rows of the dropped equations zeroed, their values kept), solved
+    // with the step's own (solve_all: at once on large meshes).
+    Eigen::VectorXd fields[3];
+    double field_rows[3][3];
+    if(rotations)
     {
-      Eigen::Vector3d mismatch;
-      for(std::size_t r = 0; r < 3; ++r)
-        mismatch[static_cast<Eigen::Index>(r)] = dropped_equation_residual(r, solution, m_pinned_rows[r].rhs);
       const std::vector<Vector3>& x = *m_x;
       const Vector3 axis[3] = {Vector3(1, 0, 0), Vector3(0, 1, 0), Vector3(0, 0, 1)};
-      Eigen::Matrix<double, Eigen::Dynamic, 3> rotation_solutions(solution.size(), 3);
-      Eigen::Matrix3d coupling;
       for(int k = 0; k < 3; ++k)
       {
-        Eigen::VectorXd field(solution.size());
+        Eigen::VectorXd& field = fields[k];
+        field.resize(solution.size());
         for(std::size_t i = 0; i < n; ++i)
         {
           const Vector3 f = cross(axis[k], x[i]);
           field[unknown(i, 0)] = -dot(m_t1[i], f);
           field[unknown(i, 1)] = -dot(m_t2[i], f);
         }
-        std::vector<double> field_rows(3);
         for(std::size_t r = 0; r < 3; ++r)
         {
-          field_rows[r] = field[unknown(m_pinned_rows[r].vertex, m_pinned_rows[r].component)];
+          field_rows[k][r] = field[unknown(m_pinned_rows[r].vertex, m_pinned_rows[r].component)];
           field[unknown(m_pinned_rows[r].vertex, m_pinned_rows[r].component)] = 0.;
         }
-        solve_in_place(field);
-        rotation_solutions.col(k) = field;
+      }
+    }
+    Eigen::VectorXd* right_hand_sides[4] = {&solution, &fields[0], &fields[1], &fields[2]};
+    if(!solve_all(right_hand_sides, rotations ? 4 : 1))
+      return false;
+    if(rotations)
+    {
+      Eigen::Vector3d mismatch;
+      for(std::size_t r = 0; r < 3; ++r)
+        mismatch[static_cast<Eigen::Index>(r)] = dropped_equation_residual(r, solution, m_pinned_rows[r].rhs);
+      Eigen::Matrix<double, Eigen::Dynamic, 3> rotation_solutions(solution.size(), 3);
+      Eigen::Matrix3d coupling;
+      for(int k = 0; k < 3; ++k)
+      {
+        rotation_solutions.col(k) = fields[k];
         for(std::size_t r = 0; r < 3; ++r)
           coupling(static_cast<Eigen::Index>(r), k) =
-              dropped_equation_residual(r, rotation_solutions.col(k), field_rows[r]);
+              dropped_equation_residual(r, rotation_solutions.col(k), field_rows[k][r]);
       }
       const Eigen::Vector3d mu = coupling.fullPivLu().solve(-mismatch);
       if(mu.allFinite() && rotation_solutions.allFinite())
@@ -317,18 +328,20 @@ public:
   }
 
 private:
-  // x = A^-1 x with the factorization of the last factorize(); false if the result is not finite.
-  bool solve_in_place(Eigen::VectorXd& x) const
+  // x = A^-1 x for each of the `count` vectors, with the factorization of the last factorize(); false if the first
+  // result is not finite (as before, the others' finiteness is the caller's to test).
+  bool solve_all(Eigen::VectorXd* const* xs, std::size_t count) const
   {
     if(m_system.number_of_vertices >= nested_dissection_min_vertices)
-      m_supernodal.solve_in_place(x);
+      m_supernodal.solve_in_place(xs, count);
     else
-    {
-      x = m_ldlt.solve(x).eval();
-      if(m_ldlt.info() != Eigen::Success)
-        return false;
-    }
-    return x.allFinite();
+      for(std::size_t c = 0; c < count; ++c)
+      {
+        *xs[c] = m_ldlt.solve(*xs[c]).eval();
+        if(c == 0 && m_ldlt.info() != Eigen::Success)
+          return false;
+      }
+    return xs[0]->allFinite();
   }
 
   struct Pinned_row
