@@ -156,9 +156,10 @@ void print_usage(std::ostream& out)
          "Progress goes to stderr once a run takes more than a second: stage, iteration, Res, non-positive\n"
          "faces, elapsed time; on a terminal as one line rewritten in place, otherwise at most a line a second.\n"
          "Ctrl-C, SIGTERM or SIGHUP (job schedulers, timeout) during the iterations stops them and writes the\n"
-         "best map so far (exit 1), unless they are inside a step that does not stop within 1.2 s (a long\n"
-         "factorization: then nothing is written); before the iterations it ends the run at once (nothing\n"
-         "written); a second signal quits at once. The output file is only ever replaced whole.\n"
+         "best map so far (exit 1), unless they are inside a part that does not stop within 1.2 s (METIS'\n"
+         "ordering of a large mesh, a least-squares step of mean_value with --no-least-distortion: then\n"
+         "nothing is written); before the iterations it ends the run at once (nothing written); a second\n"
+         "signal quits at once. The output file is only ever replaced whole.\n"
          "Options also take the form --option=VALUE.\n"
          "\n"
          "Examples:\n"
@@ -217,9 +218,10 @@ double seconds_since(Clock::time_point start)
 // process ends at once (nothing written, exit 128 + signal). During the iterations the first signal asks them to
 // stop and the best map is written (exit 1); during the writing it lets the writing finish. A second signal ends
 // the process at once, removing the temporary file of a writing under way (the output itself is only ever replaced
-// whole, by a rename). The iterations stop at their next check, within about a second, but one step can be a single
-// factorization that cannot be interrupted (a least-squares step of mean-value weights: 25 s on a 164k-vertex
-// cortex), and schedulers wait little after their SIGTERM: if the library has not returned after
+// whole, by a rename). The iterations stop at their next check (between MINRES iterations and between the
+// supernodes of a factorization, too), but some parts cannot be interrupted (METIS' ordering, about a second on a
+// 164k-vertex cortex; a sparse LU of a least-squares step of mean-value weights with --no-least-distortion, 22 s
+// there), and schedulers wait little after their SIGTERM: if the library has not returned after
 // `stop_grace`, the run ends as before the iterations (nothing written, exit 128 + signal).
 enum Run_phase
 {
@@ -292,7 +294,7 @@ void start_signal_watcher()
       std::thread([signal] {
         std::unique_lock<std::mutex> lock(phase_mutex);
         if(!phase_changed.wait_for(lock, stop_grace, [] { return run_phase.load() != ITERATING; }))
-          end_now(signal, "the iterations did not stop within 1.2 s (a long factorization)");
+          end_now(signal, "the iterations did not stop within 1.2 s (a part that cannot be interrupted)");
       }).detach();
     }
   }).detach();
