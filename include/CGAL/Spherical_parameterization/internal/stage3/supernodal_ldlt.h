@@ -243,23 +243,21 @@ private:
             if(in_stored_triangle(static_cast<int>(it.row()), j) && it.row() != j)
               visit(static_cast<int>(it.row()), j);
       };
-      std::vector<idx_t> fill(n + 1, 0);
-      for_each_stored_edge([&](int r, int c) {
-        ++fill[r + 1];
-        ++fill[c + 1];
-      });
-      for(int i = 0; i < n; ++i)
-        fill[i + 1] += fill[i];
-      std::vector<idx_t> all(static_cast<std::size_t>(fill[n]));
-      std::vector<idx_t> next(fill.begin(), fill.end() - 1);
-      for_each_stored_edge([&](int r, int c) {
-        all[static_cast<std::size_t>(next[c]++)] = r;
-        all[static_cast<std::size_t>(next[r]++)] = c;
-      });
-      adjncy.reserve(all.size());
+      Compressed_lists<idx_t> all(n); // each edge in both lists, as stored
+      for(int pass = 0; pass < 2; ++pass)
+      {
+        for_each_stored_edge([&](int r, int c) {
+          all.add(pass, c, r);
+          all.add(pass, r, c);
+        });
+        if(pass == 0)
+          all.counted();
+      }
+      adjncy.reserve(all.values.size());
       for(int i = 0; i < n; ++i)
       {
-        const auto begin = all.begin() + fill[i], end = all.begin() + fill[i + 1];
+        const auto begin = all.values.begin() + static_cast<std::ptrdiff_t>(all.start[static_cast<std::size_t>(i)]);
+        const auto end = all.values.begin() + static_cast<std::ptrdiff_t>(all.start[static_cast<std::size_t>(i) + 1]);
         std::sort(begin, end);
         adjncy.insert(adjncy.end(), begin, std::unique(begin, end)); // a pattern may store an entry twice
         xadj[i + 1] = static_cast<idx_t>(adjncy.size());
