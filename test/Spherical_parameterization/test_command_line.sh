@@ -230,7 +230,7 @@ import json, math, os, sys
 keys = {"format", "input", "output", "status", "success", "skipped", "message", "vertices", "faces", "weights", "criterion", "tolerance",
         "max_imbalance", "imbalance_percentile_99", "unbalanced_vertices", "vertices_at_rounding_floor", "vertices_below_precision", "regularized_tip_vertices",
         "held_weight_vertices", "held_weight_parameter", "requested_weights_max_imbalance",
-        "least_distortion_map", "balanced_map_folded", "distortion_energy", "max_distortion_stationarity", "least_distortion_steps",
+        "least_distortion_map", "balanced_map_folded", "least_distortion_from_balanced_map", "distortion_energy", "max_distortion_stationarity", "least_distortion_steps",
         "distortion_vertices_at_rounding_floor", "max_stationarity", "unstationary_vertices", "residual", "max_tangential_residual", "flipped_faces", "total_signed_area", "bijective",
         "distortion", "initial_flipped_faces", "uniform_initial_guess_fallback", "multilevel_fallback", "partition_retries", "partition_seed", "admissible_weights", "raised_weights", "clamped_weights",
         "rejected_moves", "separator_size",

@@ -134,6 +134,7 @@ py::dict result_dict(const SP::Result& r, const std::string& weights, const std:
   d["requested_weights_max_imbalance"] = number(r.requested_weights_max_imbalance);
   d["least_distortion_map"] = r.least_distortion_map;
   d["balanced_map_folded"] = r.balanced_map_folded;
+  d["least_distortion_from_balanced_map"] = r.least_distortion_from_balanced_map;
   d["distortion_energy"] = number(r.distortion_energy);
   d["max_distortion_stationarity"] = number(r.max_distortion_stationarity);
   d["least_distortion_steps"] = count_if(r.least_distortion_steps, r.least_distortion_map);
@@ -373,7 +374,8 @@ PYBIND11_MODULE(cgal_spherical_parameterization, m)
       "the weights' map ends unconverged, and always for mean-value weights (whose least-squares map is not\n"
       "balanced; their iterations are skipped), the bijective map of least conformal distortion instead\n"
       "(info['least_distortion_map']; info['balanced_map_folded']: the weights' balanced map reached was folded,\n"
-      "and the other ways to one were skipped); False: the weights' own map only.");
+      "and the other ways to one were skipped; info['least_distortion_from_balanced_map']: the minimization\n"
+      "started from that map, its folds repaired); False: the weights' own map only.");
   m.def("certify", &certify, py::arg("X"), py::arg("F"),
         "Certifies a map onto the sphere with exact predicates: dict(bijective, flipped_faces, total_signed_area, "
         "faces).");

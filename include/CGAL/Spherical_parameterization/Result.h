@@ -115,6 +115,10 @@ struct Result
   /// other ways rarely find another one, and take most of the time). It can be true while `least_distortion_map` is
   /// false (the minimization was cancelled, ran out of time, or did not lower the distortion). False otherwise.
   bool balanced_map_folded = false;
+  /// When `least_distortion_map` and `balanced_map_folded`: the minimization started from that folded balanced map,
+  /// its folds repaired (the vertices of its non-positive faces moved into their rings' kernels, then smoothed), not
+  /// from its own coarser levels (the manual's Method section). False otherwise.
+  bool least_distortion_from_balanced_map = false;
   /// The conformal distortion of the map returned when `least_distortion_map`: the mean, weighted by 3D area, of
   /// \f$(\sigma_1^2 + \sigma_2^2) / (2 \sigma_1 \sigma_2)\f$ over the affine maps from each 3D triangle to the flat
   /// triangle through its sphere points, each term measured with the area signed by the sphere's orientation (so a

@@ -83,6 +83,9 @@ struct Iteration_report
   // Newton's full steps reached a balanced map of degree 1 with non-positive faces (not only tips below double
   // precision, which tip_regularization.h resolves): the weights' balanced map found is not bijective.
   bool balanced_map_folded = false;
+  // That folded balanced map, when balanced_map_folded (the least-distortion minimization may start from it, its
+  // folds repaired: stage3/fold_repair.h); empty otherwise.
+  std::vector<Vector3> folded_balanced_map;
 };
 
 // The time budget, checked between iterations and, inside the long ones, between their parts.

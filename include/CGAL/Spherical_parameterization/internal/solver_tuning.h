@@ -127,6 +127,11 @@ struct Solver_tuning
   double least_distortion_coarse_tolerance = 1e-4;
   double least_distortion_smoothing_stall = 0.7;
   int least_distortion_max_smoothing_sweeps = 100;
+  // Its start from a folded balanced map (fold_repair.h): at most this many rounds of moves around the folds, and
+  // taken where its distortion is at most this (the levels' starts measured 1.003 to 1.017, the repaired balanced maps
+  // 1.002 to 1.013; maps whose thin parts are squeezed to the limits of double precision are far above).
+  int fold_repair_max_rounds = 10;
+  double least_distortion_repaired_start_max_energy = 1.1;
   // With a time budget, the ways to the balanced map of weights other than Tutte's get this share of it when the
   // minimization follows them; the minimization gets the rest (the large meshes' attempts took the whole 60 s before:
   // CGAL's horse and Oded's scorpion never reached the minimization).

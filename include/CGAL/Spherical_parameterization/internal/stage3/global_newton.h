@@ -324,6 +324,8 @@ inline Iteration_report newton_through_folds(Sphere_state& state, const Iteratio
     }
     // Folds that are all arm tips below double precision (tips not empty) are a matter of precision, not of the weights.
     report.balanced_map_folded = tips.empty() && !report.converged && !report.cancelled && !report.out_of_time;
+    if(report.balanced_map_folded)
+      report.folded_balanced_map = counts.folded_balanced_map;
   }
   if(statistics != nullptr)
     *statistics = std::move(counts);
