@@ -1381,8 +1381,8 @@ TEST(MeshCoarsening, KernelCentreInsertionKeepsTheMapBijective)
 }
 
 // A bijective map folded on purpose: one vertex thrown across a neighbour (its ring intact: its kernel repairs it in the
-// first round), and two neighbours swapped (each one's ring holds the other, misplaced: the later rounds, which also
-// move the vertices around the folds, repair it). Every face ends positive under the exact predicate and in the
+// first round), and two neighbours swapped (each one's ring holds the other, misplaced; the later rounds also move the
+// vertices around the folds). Every face ends positive under the exact predicate and in the
 // orientation of the distortion; with no round allowed, the folds stay and nothing moves.
 TEST(FoldRepair, MovesTheFoldedVerticesIntoTheirRingsKernels)
 {
@@ -2102,6 +2102,8 @@ TEST(SphericalParameterize, LeastDistortion)
     EXPECT_EQ(result.status, SP::Error_code::OK) << result.message;
     EXPECT_TRUE(result.least_distortion_map);
     EXPECT_TRUE(result.balanced_map_folded);
+    // Its 60 folded faces are not all repaired within Solver_tuning::fold_repair_max_rounds: the levels' start.
+    EXPECT_FALSE(result.least_distortion_from_balanced_map);
   }
   {
     // Diplodocus' cotangent weights: Newton's full steps reach a balanced map with a few non-positive faces; repaired
@@ -2125,6 +2127,9 @@ TEST(SphericalParameterize, LeastDistortion)
     EXPECT_EQ(result.status, SP::Error_code::OK) << result.message;
     EXPECT_TRUE(result.least_distortion_map);
     EXPECT_TRUE(result.balanced_map_folded);
+    // Its one folded face is repaired, but F is 1.25 there, above least_distortion_repaired_start_max_energy (its
+    // minimum: 1.10): Tutte's map is the start.
+    EXPECT_FALSE(result.least_distortion_from_balanced_map);
     EXPECT_EQ(result.gauss_seidel.iterations, 0u);
     EXPECT_EQ(result.newton.residual, result.initial_guess.residual);
     EXPECT_LT(with, without); // 6.0 degrees against 48.4 for the balanced map

@@ -770,7 +770,8 @@ private:
         m_iteration_options.max_newton_sweeps = 0;
     }
     const double direct_seconds = direct_clock.time();
-    // The folded map is not kept: the state went back to the initial guess, which the minimization may start from.
+    // The state goes back to the initial guess (the map kept where the minimization cannot run); the folded map is
+    // kept for the minimization's start (least_distortion()).
     m_balanced_map_folded = direct_newton.balanced_map_folded && m_iteration_options.least_distortion_follows;
     if(m_balanced_map_folded)
       m_folded_balanced_map = std::move(direct_newton.folded_balanced_map);
@@ -916,11 +917,12 @@ private:
         x.empty() ? std::numeric_limits<double>::infinity() : conformal_distortion(m_system.triangles, m_mesh.points, x);
     // First from the folded balanced map that Newton's full steps reached, its folds repaired (stage3/fold_repair.h):
     // close to conformal but at its folds, it is a better start than the levels below give, which are then not
-    // computed (bigbrain with cotangent weights: distortion 1.0018 against 1.0083, 7 s of levels saved). Only where
+    // computed (bigbrain with cotangent weights: distortion 1.00166 against 1.0083, 7 s of levels saved). Only where
     // the repair leaves every face positive and the distortion is at most
     // Solver_tuning::least_distortion_repaired_start_max_energy (where cotangent weights squeeze thin parts to the
     // limits of double precision, the minimization cannot recover from their map: see the levels below); and where the
-    // minimization from it ends short of stationary with time left, the levels' start is tried after all.
+    // minimization from it ends short of stationary, or its map is not taken (take_least_distortion_map), with time
+    // left, the levels' start is tried after all (with the time left: the budget counts from `clock`'s start).
     if(!m_folded_balanced_map.empty())
     {
       std::vector<Vector3> repaired;
@@ -954,12 +956,16 @@ private:
                     << " Newton steps, distortion " << report.energy << ", max stationarity "
                     << report.max_stationarity << (report.stationary ? " (stationary)" : "") << ", " << clock.time()
                     << " s\n";
-        if(report.stationary || report.cancelled || report.out_of_time || past_time_budget(options, clock))
+        const bool stopped = report.cancelled || report.out_of_time || past_time_budget(options, clock);
+        if(report.stationary || stopped)
         {
-          m_result.newton.seconds += clock.time();
           take_least_distortion_map(x, repaired, report, reached);
           m_result.least_distortion_from_balanced_map = m_result.least_distortion_map;
-          return;
+          if(m_result.least_distortion_map || stopped)
+          {
+            m_result.newton.seconds += clock.time();
+            return;
+          }
         }
       }
     }

@@ -8,9 +8,9 @@
 // A map with a few folded faces made a start for the least-distortion minimization, which needs every face positive:
 // each vertex of a non-positive face is moved to the centre of its ring's kernel (kernel_centre(), mesh_coarsening.h),
 // where its whole fan is positive, if that kernel is not empty. A move only changes the faces of the vertex moved,
-// and all of them end positive, so the faces that are not positive only become fewer. Where a vertex's kernel is
-// empty (its neighbours are folded too), the next rounds also move the vertices around the folds, one ring further
-// each round.
+// and all of them end positive, so the faces that are not positive only become fewer. While faces stay folded (a
+// vertex's kernel was empty: its neighbours are folded too), the next rounds also move the vertices around them, one
+// ring further each round.
 //
 // The map it is for: the balanced map of cotangent weights that Newton's full steps reach with a few folded faces
 // (Iteration_report::folded_balanced_map). Such a map is close to conformal everywhere but at its folds, so, repaired
@@ -27,6 +27,9 @@
 #include <CGAL/Spherical_parameterization/internal/mesh_coarsening.h>
 #include <CGAL/Spherical_parameterization/internal/stage3/least_distortion.h>
 
+#include <CGAL/assertions.h>
+
+#include <array>
 #include <cstddef>
 #include <vector>
 
@@ -52,11 +55,16 @@ struct Fold_repair_report
   int rounds = 0;
 };
 
+// Vertices of a higher degree are not moved: kernel_centre() tries every triple of ring edges (its cost grows as the
+// fourth power of the degree; written for the coarsening's rings), and the fans of CAD meshes can have hundreds.
+constexpr std::size_t fold_repair_max_degree = 64;
+
 // Moves vertices of `x` (the triangles and rings of `system`, whose neighbours go counter-clockwise) until every face
 // is positive, in at most `max_rounds` rounds; `x` keeps the moves made either way.
 inline Fold_repair_report repair_folds(const Sphere_system& system, std::vector<Vector3>& x, int max_rounds)
 {
   const std::size_t n = system.number_of_vertices;
+  CGAL_precondition(x.size() == n);
   Fold_repair_report report;
   std::vector<char> candidate(n, 0), moved(n, 0);
   std::vector<Vector3> ring;
@@ -78,7 +86,7 @@ inline Fold_repair_report repair_folds(const Sphere_system& system, std::vector<
       report.repaired = true;
       break;
     }
-    if(round == max_rounds)
+    if(round >= max_rounds)
       break;
     if(round > 0) // one ring further around the folds each round
     {
@@ -91,9 +99,9 @@ inline Fold_repair_report repair_folds(const Sphere_system& system, std::vector<
     }
     for(std::size_t v = 0; v < n; ++v)
     {
-      if(!candidate[v])
-        continue;
       const std::size_t d = system.degree(v);
+      if(!candidate[v] || d > fold_repair_max_degree)
+        continue;
       ring.resize(d);
       Vector3 mean;
       for(std::size_t m = 0; m < d; ++m)
@@ -101,10 +109,18 @@ inline Fold_repair_report repair_folds(const Sphere_system& system, std::vector<
         ring[m] = x[std::size_t(system.neighbors[system.offsets[v] + m])];
         mean += ring[m];
       }
+      // Each face of the fan tested in its own vertex order, as the count above and F test it (the orientation of F
+      // is computed in double, and its rounding depends on that order).
       auto positive_fan = [&](const Vector3& p) {
         for(std::size_t m = 0; m < d; ++m)
-          if(!positive_for_distortion(p, ring[m], ring[(m + 1) % d]))
+        {
+          const std::array<int, 3>& t = system.triangles[std::size_t(system.ring_faces[system.offsets[v] + m])];
+          const Vector3* corner[3];
+          for(int k = 0; k < 3; ++k)
+            corner[k] = std::size_t(t[k]) == v ? &p : &x[std::size_t(t[k])];
+          if(!positive_for_distortion(*corner[0], *corner[1], *corner[2]))
             return false;
+        }
         return true;
       };
       // About the ring's mean first, as prolong() does; about the vertex where the mean's hemisphere misses a neighbour.

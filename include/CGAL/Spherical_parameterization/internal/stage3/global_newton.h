@@ -324,8 +324,8 @@ inline Iteration_report newton_through_folds(Sphere_state& state, const Iteratio
     }
     // Folds that are all arm tips below double precision (tips not empty) are a matter of precision, not of the weights.
     report.balanced_map_folded = tips.empty() && !report.converged && !report.cancelled && !report.out_of_time;
-    if(report.balanced_map_folded)
-      report.folded_balanced_map = counts.folded_balanced_map;
+    if(report.balanced_map_folded && options.least_distortion_follows) // the minimization's start (Sphere_mapper)
+      report.folded_balanced_map = std::move(counts.folded_balanced_map);
   }
   if(statistics != nullptr)
     *statistics = std::move(counts);
@@ -349,10 +349,10 @@ inline Iteration_report full_newton_steps(Sphere_state& state, const Iteration_o
      || (report.balanced_map_folded && options.least_distortion_follows) || imbalances_agree)
     return report;
   state.assign(start);
-  const Iteration_report first = report;
+  const std::size_t first_sweeps = report.sweeps, first_linear_iterations = report.linear_iterations;
   report = newton_through_folds(state, options, clock, nullptr, Step_merit::IMBALANCE, boost_aim);
-  report.sweeps += first.sweeps;
-  report.linear_iterations += first.linear_iterations;
+  report.sweeps += first_sweeps;
+  report.linear_iterations += first_linear_iterations;
   return report;
 }
 
