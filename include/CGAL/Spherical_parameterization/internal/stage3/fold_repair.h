@@ -41,10 +41,7 @@ namespace internal {
 // can differ on faces squeezed to the limits of double precision; the minimization tests the latter).
 inline bool positive_for_distortion(const Vector3& a, const Vector3& b, const Vector3& c)
 {
-  using least_distortion_detail::to_eigen;
-  return is_positive(a, b, c)
-         && least_distortion_detail::orientation(to_eigen(a).normalized(), to_eigen(b).normalized(),
-                                                 to_eigen(c).normalized()) > 0.;
+  return is_positive(a, b, c) && positive_in_distortion_orientation(a, b, c);
 }
 
 struct Fold_repair_report

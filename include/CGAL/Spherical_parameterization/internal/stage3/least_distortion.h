@@ -458,6 +458,15 @@ inline double first_nonpositive_time(const V3& a, const V3& b, const V3& c, cons
 
 } // namespace least_distortion_detail
 
+// Positive in the orientation F is defined by, the points normalized first as the minimization does with its start
+// (its sign can differ from the exact predicate's on faces squeezed to the limits of double precision).
+inline bool positive_in_distortion_orientation(const Vector3& a, const Vector3& b, const Vector3& c)
+{
+  using least_distortion_detail::to_eigen;
+  return least_distortion_detail::orientation(to_eigen(a).normalized(), to_eigen(b).normalized(),
+                                              to_eigen(c).normalized()) > 0.;
+}
+
 // F of the map x (1 when every flat triangle is similar to its 3D triangle); +infinity when a face is not positive
 // (in the relative orientation used here) or a 3D triangle is degenerate.
 inline double conformal_distortion(const std::vector<std::array<int, 3>>& triangles, const std::vector<Vector3>& points,

@@ -135,12 +135,7 @@ bool multilevel_least_distortion_start(const std::vector<Vector3>& points,
     // start (the caller falls back to Tutte's map). Smoothing cannot unfold it. Each new face must also be positive
     // in the orientation F is defined by (its sign can differ from the exact predicate's on faces squeezed to the
     // limits of double precision), as the minimization tests its start (after normalizing it).
-    auto positive_for_distortion = [](const Vector3& a, const Vector3& b, const Vector3& c) {
-      using least_distortion_detail::to_eigen;
-      return least_distortion_detail::orientation(to_eigen(a).normalized(), to_eigen(b).normalized(),
-                                                  to_eigen(c).normalized()) > 0.;
-    };
-    if(prolong(hierarchy[level - 1], y, finer, Insertion::KERNEL_CENTRE, positive_for_distortion) != 0)
+    if(prolong(hierarchy[level - 1], y, finer, Insertion::KERNEL_CENTRE, positive_in_distortion_orientation) != 0)
       return false;
     const double smoothing_start = clock.time();
     multilevel.levels.back().smoothing_sweeps =
