@@ -1862,8 +1862,8 @@ TEST(LeastDistortion, CornerBlockIsTheWholeHessiansBlock)
 }
 
 // The boosts' balancing: from the regular icosahedron's map (the minimum of F, by symmetry) moved by a boost, it
-// finds its way back (F to within rounding of the minimum) by boosts alone; from the minimum it applies none, nor
-// where the decrease it predicts is below the share asked of the last step's.
+// finds its way back (F to within rounding of the minimum) by boosts alone, at a start from far too; from the minimum
+// it applies none, nor where the decrease it predicts is below the share asked of the last step's.
 TEST(LeastDistortion, BalancesTheBoosts)
 {
   namespace D = SP::internal::least_distortion_detail;
@@ -1889,12 +1889,25 @@ TEST(LeastDistortion, BalancesTheBoosts)
   D::boost_map(minimum, D::V3(0.3, -0.2, 0.4), y);
   ASSERT_GT(energy(y), lowest + 1e-3);
   std::vector<D::V3> kept = y;
-  EXPECT_EQ(D::balance_distortion_boosts(arrays.triangles, shapes, kept, 3, 0.01, 1e3), 0u); // 1% of 1e3 > F's range
+  // 1% of 1e3 is above F's range: no boost.
+  EXPECT_EQ(D::balance_distortion_boosts(arrays.triangles, shapes, kept, 3, 0.01, 1e3, false), 0u);
   EXPECT_EQ(kept, y);
-  EXPECT_GT(D::balance_distortion_boosts(arrays.triangles, shapes, y, 10, 0., 0.), 0u);
+  std::vector<D::V3> from_start = y;
+  EXPECT_GT(D::balance_distortion_boosts(arrays.triangles, shapes, y, 10, 0., 0., false), 0u);
   EXPECT_NEAR(energy(y), lowest, 1e-12);
+  // At a start (the eigenvalues' magnitudes where the boosts' Hessian is indefinite): the same minimum, from near and
+  // from far along the boosts.
+  EXPECT_GT(D::balance_distortion_boosts(arrays.triangles, shapes, from_start, 10, 0., 0., true), 0u);
+  EXPECT_NEAR(energy(from_start), lowest, 1e-12);
+  std::vector<D::V3> far;
+  D::boost_map(minimum, 0.9 * D::V3(0.6, 0.4, -0.5).normalized(), far); // F 0.13 above its minimum
+  const double far_energy = energy(far);
+  ASSERT_GT(far_energy, lowest + 0.1);
+  EXPECT_GT(D::balance_distortion_boosts(arrays.triangles, shapes, far, 10, 0., 0., true), 0u);
+  EXPECT_NEAR(energy(far), lowest, 1e-12);
   std::vector<D::V3> at_minimum = minimum;
-  EXPECT_EQ(D::balance_distortion_boosts(arrays.triangles, shapes, at_minimum, 10, 0., 0.), 0u);
+  EXPECT_EQ(D::balance_distortion_boosts(arrays.triangles, shapes, at_minimum, 10, 0., 0., false), 0u);
+  EXPECT_EQ(D::balance_distortion_boosts(arrays.triangles, shapes, at_minimum, 10, 0., 0., true), 0u);
 }
 
 // The minimization itself on an icosahedron from a perturbed map: it takes steps, ends stationary, reports the energy

@@ -331,12 +331,13 @@ inline void boost_map(const std::vector<V3>& z, const V3& c, std::vector<V3>& ou
 // there (from CGAL's bull after 1,000 steps, one exact boost of length 0.78 lowered F from 1.06226 to 1.05963, two
 // thirds of the way to its minimum; its Hessian along the boosts: 0.004 to 0.012). Here Newton's method on the three
 // boost parameters, their Hessian from forward differences of the boost gradient, each boost applied exactly
-// (mobius.h), halved until F falls enough with every face positive; skipped where that Hessian is not positive
-// definite (far from the minimum). At most `iterations`, while the decrease it predicts exceeds `share` times
-// `reference` (what the last Newton step achieved; 0 before the first). Returns the number of boosts applied.
+// (mobius.h), halved until F falls enough with every face positive. Where that Hessian is not positive definite: at
+// the minimization's start (`at_start`), its eigenvalues' magnitudes (see below); later, no boost. At most
+// `iterations`, while the decrease it predicts exceeds `share` times `reference` (what the last Newton step achieved;
+// 0 before the first). Returns the number of boosts applied.
 inline std::size_t balance_distortion_boosts(const std::vector<std::array<int, 3>>& triangles,
                                              const std::vector<Face_shape>& shapes, std::vector<V3>& y,
-                                             int iterations, double share, double reference,
+                                             int iterations, double share, double reference, bool at_start,
                                              bool parallel = false)
 {
   // A boost rounds every position again, which changes a face with edges of 1e-11 by eps / 1e-11 ~ 2e-5 of its size:
@@ -363,10 +364,20 @@ inline std::size_t balance_distortion_boosts(const std::vector<std::array<int, 3
     }
     hessian = (0.5 * (hessian + hessian.transpose())).eval();
     const Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> eigen(hessian);
-    if(eigen.info() != Eigen::Success || !(eigen.eigenvalues()[0] > 0.))
+    if(eigen.info() != Eigen::Success || !(eigen.eigenvalues()[at_start ? 2 : 0] > 0.))
       break;
-    V3 step = -(eigen.eigenvectors() * eigen.eigenvalues().cwiseInverse().asDiagonal()
-                * eigen.eigenvectors().transpose() * gradient);
+    // A start (the levels' map carried back, a repaired balanced map, another method's map) may sit anywhere along the
+    // boosts, where F is not convex: there the step is Newton's with the eigenvalues' magnitudes, the smallest raised
+    // to 1e-3 times the largest (a descent direction that also leaves the ridge). Skipped instead, the boosts were
+    // left to the Newton steps on the whole map, which crawl along them: bunny00 from its cotangent balanced map
+    // (eigenvalues -1.7e-5, 2.8e-4, 2.9e-4) took 8 steps, the last five along the boosts (lengths 0.02 to 1), and 3
+    // with this; triceratops with mean-value weights 21 instead of 31. Not after the steps: near the minimum, on
+    // maps with slivers, these forward differences are mostly noise (oded_scorpion: the smallest eigenvalue from
+    // -0.007 to 2e-4 between consecutive steps), and such boosts cost oded_scorpion 5 steps more.
+    const V3 curvature =
+        at_start ? V3(eigen.eigenvalues().cwiseAbs().cwiseMax(1e-3 * eigen.eigenvalues()[2])) : V3(eigen.eigenvalues());
+    V3 step = -(eigen.eigenvectors() * curvature.cwiseInverse().asDiagonal() * eigen.eigenvectors().transpose()
+                * gradient);
     const double slope = gradient.dot(step);
     double energy = 0.;
     for(double term : terms)
@@ -853,7 +864,7 @@ inline Least_distortion_report minimize_conformal_distortion(const std::vector<s
   report.started = true;
   const Solver_tuning& tuning = options.tuning;
   report.boosts += balance_distortion_boosts(triangles, shapes, y, tuning.least_distortion_boost_iterations,
-                                             tuning.least_distortion_boost_share, 0., parallel);
+                                             tuning.least_distortion_boost_share, 0., true, parallel);
 
   const double floor_scale = 64. * std::numeric_limits<double>::epsilon();
   const double rounding_floor_factor = 8.;
@@ -1216,7 +1227,7 @@ inline Least_distortion_report minimize_conformal_distortion(const std::vector<s
     // 21 steps on the mesh instead of 12; oded_scorpion 18 instead of 13).
     if(!(whole_hessian && accepted == first && boost.norm() > 0.))
       report.boosts += balance_distortion_boosts(triangles, shapes, y, tuning.least_distortion_boost_iterations,
-                                                 tuning.least_distortion_boost_share, decrease, parallel);
+                                                 tuning.least_distortion_boost_share, decrease, false, parallel);
     // Where the floor caps the steps: a full step at the floor, the shifts over half the model's curvature along it,
     // and F lowered by at least 0.8 times what the step before (also full, at the floor) lowered it: linear
     // convergence along a direction flatter than the floor. A marching-tetrahedra surface with thin arms
