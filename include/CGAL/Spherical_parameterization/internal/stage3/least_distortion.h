@@ -366,12 +366,12 @@ inline std::size_t balance_distortion_boosts(const std::vector<std::array<int, 3
     const Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> eigen(hessian);
     if(eigen.info() != Eigen::Success || !(eigen.eigenvalues()[at_start ? 2 : 0] > 0.))
       break;
-    // A start (the levels' map carried back, a repaired balanced map, another method's map) may sit anywhere along the
-    // boosts, where F is not convex: there the step is Newton's with the eigenvalues' magnitudes, the smallest raised
-    // to 1e-3 times the largest (a descent direction that also leaves the ridge). Skipped instead, the boosts were
-    // left to the Newton steps on the whole map, which crawl along them: bunny00 from its cotangent balanced map
-    // (eigenvalues -1.7e-5, 2.8e-4, 2.9e-4) took 8 steps, the last five along the boosts (lengths 0.02 to 1), and 3
-    // with this; triceratops with mean-value weights 21 instead of 31. Not after the steps: near the minimum, on
+    // A start (the levels' map carried back, a repaired balanced map) may sit anywhere along the boosts, where F is not
+    // convex: there the step is Newton's with the eigenvalues' magnitudes, the smallest raised to 1e-3 times the
+    // largest (a descent direction that also leaves the ridge). Skipped instead, the boosts were left to the Newton
+    // steps on the whole map, which crawl along them: the minimization of bunny00 started from its cotangent balanced
+    // map, as an experiment (eigenvalues -1.7e-5, 2.8e-4, 2.9e-4), took 8 steps, the last five along the boosts
+    // (lengths 0.02 to 1), and 3 with this; triceratops with mean-value weights 21 instead of 31. Not after the steps: near the minimum, on
     // maps with slivers, these forward differences are mostly noise (oded_scorpion: the smallest eigenvalue from
     // -0.007 to 2e-4 between consecutive steps), and such boosts cost oded_scorpion 5 steps more.
     const V3 curvature =
