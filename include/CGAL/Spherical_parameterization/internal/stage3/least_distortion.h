@@ -326,6 +326,30 @@ inline void boost_map(const std::vector<V3>& z, const V3& c, std::vector<V3>& ou
   });
 }
 
+// F's Hessian along the three boosts at z (symmetrized), from forward differences of the boost gradient `gradient`
+// (energy_and_boost_gradient's at z); false if a boosted map has a face that is not positive.
+inline bool boost_hessian(const std::vector<std::array<int, 3>>& triangles, const std::vector<Face_shape>& shapes,
+                          const std::vector<V3>& z, const V3& gradient, Eigen::Matrix3d& hessian,
+                          bool parallel = false, std::vector<Face_boost_terms>* buffer = nullptr)
+{
+  // A boost rounds every position again, which changes a face with edges of 1e-11 by eps / 1e-11 ~ 2e-5 of its size:
+  // differences over boosts of 1e-5 were noise on a map with such faces (an indefinite Hessian), over 1e-3 they agree
+  // with central differences.
+  const double difference_step = 1e-3;
+  std::vector<V3> moved_map;
+  std::vector<double> terms;
+  for(int l = 0; l < 3; ++l)
+  {
+    V3 moved;
+    boost_map(z, difference_step * V3::Unit(l), moved_map, parallel);
+    if(!energy_and_boost_gradient(triangles, shapes, moved_map, terms, moved, parallel, buffer))
+      return false;
+    hessian.col(l) = (moved - gradient) / difference_step;
+  }
+  hessian = (0.5 * (hessian + hessian.transpose())).eval();
+  return true;
+}
+
 // F is nearly invariant under the Moebius boosts of the sphere (conformal maps: only the flat triangles through the
 // sphere points tell them apart), so its Hessian is nearly singular along them and the Marquardt-shifted steps crawl
 // there (from CGAL's bull after 1,000 steps, one exact boost of length 0.78 lowered F from 1.06226 to 1.05963, two
@@ -340,10 +364,6 @@ inline std::size_t balance_distortion_boosts(const std::vector<std::array<int, 3
                                              int iterations, double share, double reference, bool at_start,
                                              bool parallel = false)
 {
-  // A boost rounds every position again, which changes a face with edges of 1e-11 by eps / 1e-11 ~ 2e-5 of its size:
-  // differences over boosts of 1e-5 were noise on a map with such faces (an indefinite Hessian), over 1e-3 they agree
-  // with central differences.
-  const double difference_step = 1e-3;
   std::vector<double> terms, trial_terms;
   std::vector<V3> trial;
   std::vector<Face_boost_terms> buffer; // energy_and_boost_gradient's with `parallel`
@@ -354,15 +374,8 @@ inline std::size_t balance_distortion_boosts(const std::vector<std::array<int, 3
   for(int iteration = 0; iteration < iterations; ++iteration)
   {
     Eigen::Matrix3d hessian;
-    for(int l = 0; l < 3; ++l)
-    {
-      V3 moved;
-      boost_map(y, difference_step * V3::Unit(l), trial, parallel);
-      if(!energy_and_boost_gradient(triangles, shapes, trial, trial_terms, moved, parallel, &buffer))
-        return applied;
-      hessian.col(l) = (moved - gradient) / difference_step;
-    }
-    hessian = (0.5 * (hessian + hessian.transpose())).eval();
+    if(!boost_hessian(triangles, shapes, y, gradient, hessian, parallel, &buffer))
+      return applied;
     const Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> eigen(hessian);
     if(eigen.info() != Eigen::Success || !(eigen.eigenvalues()[at_start ? 2 : 0] > 0.))
       break;
