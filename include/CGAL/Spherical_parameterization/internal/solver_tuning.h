@@ -86,8 +86,9 @@ struct Solver_tuning
   // carried back), reaching the cap makes the rest of the phase factorize.
   int newton_max_minres_iterations = 200;
   // With weights of either sign, a step whose forcing is below newton_max_forcing factorizes when the last MINRES
-  // solve took more than this many iterations (mobius_newton.h): about what one factorization costs on the meshes
-  // where MINRES then needed hundreds (c3d_igea's 134k vertices: 1 to 1.5 s, 35 to 45 iterations).
+  // solve took more than this many iterations, or the map has folded faces (mobius_newton.h): about what one
+  // factorization costs on the meshes where MINRES then needed hundreds (c3d_igea's 134k vertices: 1 to 1.5 s, 35 to
+  // 45 iterations).
   int newton_factorize_after_minres_iterations = 30;
 
   // --- Newton's steps (mobius_newton.h, global_newton.h) ---

@@ -200,15 +200,19 @@ inline Iteration_report mobius_newton(Sphere_state& state, const Iteration_optio
 
     bool has_step = false;
     // With negative weights, once Newton converges fast enough that the forcing tightens below its cap, and MINRES
-    // already needed many iterations for the last step, the steps are exact: with the Laplacian's preconditioner, a
-    // poor model of that Jacobian, the tighter forcing costs hundreds of iterations (c3d_igea's finest level: 39 at
-    // the cap, then 150 for a forcing of 5e-4, 4.5 s, and up to 200 on vol2surf_lh_pial, where one factorized step
-    // takes 1 to 1.5 s and converges faster). Where MINRES is cheap it stays (bunny00: 5 to 15 iterations a step;
-    // factorized, its map took 1.6 s instead of 1.1 s). Far from the balanced map the forcing stays at its cap and
-    // MINRES's inexact steps go through the folds (CGAL's armadillo: factorized there, its full steps stalled among
-    // 10,000 non-positive faces).
+    // already needed many iterations for the last step or the map has folded faces, the steps are exact: with the
+    // Laplacian's preconditioner, a poor model of that Jacobian, the tighter forcing costs hundreds of iterations
+    // (c3d_igea's finest level: 39 at the cap, then 150 for a forcing of 5e-4, 4.5 s, and up to 200 on
+    // vol2surf_lh_pial, where one factorized step takes 1 to 1.5 s and converges faster). With folds the model is
+    // poorer still, whatever the last solve took (measured, not explained here): armadillo Loop x2's finest level,
+    // cotangent weights, took 17 iterations for the cap from its map carried back, then, among 8,198
+    // folded faces, 90 for the same reduction and 200 (19 s) without reaching a forcing of 4e-4, where a factorized
+    // step takes 1.7 s (4.5 s with its analysis). Where MINRES is cheap it stays (bunny00: 5 to 15 iterations a step,
+    // no folds; factorized, its map took 1.6 s instead of 1.1 s). Far from the balanced map the forcing stays at its
+    // cap and MINRES's inexact steps go through the folds (CGAL's armadillo: factorized there, its full steps stalled
+    // among 10,000 non-positive faces).
     if(iterative && !positive_weights && forcing < tuning.newton_max_forcing
-       && last_minres_iterations > tuning.newton_factorize_after_minres_iterations)
+       && (last_minres_iterations > tuning.newton_factorize_after_minres_iterations || state.invalid_faces() > 0))
       iterative = false;
     if(iterative)
     {
