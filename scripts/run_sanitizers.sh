@@ -19,8 +19,10 @@ build="${SANITIZE_BUILD_DIR:-build-sanitize}"
 bash scripts/install_missing.sh clang-14 libclang-rt-14-dev zlib1g-dev
 
 start=$(date +%s)
-# -O1 keeps the sanitizers' reports readable and the build and run fast; assertions stay on (no NDEBUG).
-flags="-O1 -g -fno-omit-frame-pointer -fsanitize=address,undefined -fno-sanitize-recover=undefined"
+# -O1 keeps the sanitizers' reports readable and the build and run fast; assertions stay on (no NDEBUG). Line tables
+# only: the reports keep their files and lines, and the unit tests' translation unit compiles in 272 s instead of 336 s
+# (3.7 GB instead of 4.8 GB, an object of 43 MB instead of 144 MB): it is the sanitizer build's longest step.
+flags="-O1 -gline-tables-only -fno-omit-frame-pointer -fsanitize=address,undefined -fno-sanitize-recover=undefined"
 CC=clang-14 CXX=clang++-14 cmake -S . -B "$build" -DCMAKE_BUILD_TYPE=None -DCMAKE_CXX_FLAGS="$flags" \
   -DCMAKE_EXE_LINKER_FLAGS="-fsanitize=address,undefined" -DSPHERICAL_PARAMETERIZATION_BUILD_FUZZER=ON \
   -DSPHERICAL_PARAMETERIZATION_BUILD_EXAMPLES=OFF -DSPHERICAL_PARAMETERIZATION_BUILD_BENCHMARKS=OFF \
