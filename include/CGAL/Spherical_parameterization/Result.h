@@ -109,7 +109,8 @@ struct Result
   /// (or its rounding floor) at every vertex.
   bool least_distortion_map = false;
   /// With the named parameter `least_distortion` (and without `hold_weights`): Newton's full steps reached a map
-  /// balanced for the weights given (symmetric weights other than Tutte's: cotangent, admissible, the user's) that has
+  /// balanced for the weights given (symmetric weights other than Tutte's: cotangent, admissible, the user's), or
+  /// approached one linearly with the rest of the map nearly balanced, that has
   /// non-positive faces beyond arm tips below double precision, so the other ways to a balanced map were skipped and
   /// the minimization followed at once (the manual's Method section: such a map is where those weights lead; the
   /// other ways rarely find another one, and take most of the time). It can be true while `least_distortion_map` is

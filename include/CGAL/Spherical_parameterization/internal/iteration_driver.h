@@ -81,7 +81,8 @@ struct Iteration_report
   // balanced for those held weights; empty otherwise.
   std::vector<double> weight_holds;
   // Newton's full steps reached a balanced map of degree 1 with non-positive faces (not only tips below double
-  // precision, which tip_regularization.h resolves): the weights' balanced map found is not bijective.
+  // precision, which tip_regularization.h resolves), or approached one linearly with the rest of the map nearly
+  // balanced (mobius_newton.h): the weights' balanced map found is not bijective.
   bool balanced_map_folded = false;
   // That folded balanced map, when balanced_map_folded (the least-distortion minimization may start from it, its
   // folds repaired: stage3/fold_repair.h); empty otherwise.

@@ -95,6 +95,10 @@ struct Solver_tuning
   // Newton's full steps through folds are given this many iterations: the meshes of the 66 that converge this way
   // need at most about 20.
   std::size_t free_newton_patience = 30;
+  // With weights of either sign, they stop after this many steps in a row cut short by the line search on the same
+  // number of folded faces, where the folds are local and the rest of the map nearly balanced (mobius_newton.h): the
+  // balanced map they approach, linearly, is folded.
+  std::size_t free_newton_damped_fold_steps = 3;
   // Through folds, where no step lowers the merit, a step is accepted that lowers the largest of the merits of the
   // last this many iterates (a non-monotone line search, Grippo, Lampariello and Lucidi, used as a watchdog), with
   // Tutte's weights (1 turns it off): paths through folds lower the merit only on the whole. Without it CGAL's camel
