@@ -45,8 +45,10 @@ public:
 
   const Sphere_system& system() const { return m_system; }
   std::vector<Vector3>& positions() { return m_x; }
+  const std::vector<Vector3>& positions() const { return m_x; }
   const Vector3& sum(std::size_t i) const { return m_s[i]; }
   std::size_t invalid_faces() const { return m_invalid_faces; }
+  bool face_positive(std::size_t f) const { return m_face_positive[f] != 0; }
   // Changes whenever a position does (measurements of the map are cached against it: Iteration_driver).
   std::size_t revision() const { return m_revision; }
 

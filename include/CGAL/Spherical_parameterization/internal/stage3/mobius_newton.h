@@ -61,15 +61,16 @@ inline bool has_degree_one(const Sphere_system& system, const std::vector<Vector
 // Whether the folds are local (the vertices of non-positive faces and their neighbours at most a hundredth of the
 // vertices) and every vertex away from them has an imbalance of at most `level` (or its rounding floor; vertices below
 // precision are not tested).
-inline bool balanced_away_from_folds(const Sphere_system& system, const std::vector<Vector3>& x, double level)
+inline bool balanced_away_from_folds(const Sphere_state& state, double level)
 {
+  const Sphere_system& system = state.system();
+  const std::vector<Vector3>& x = state.positions();
   std::vector<char> near_fold(system.number_of_vertices, 0);
-  for(const auto& t : system.triangles)
-    if(!is_positive(x[static_cast<std::size_t>(t[0])], x[static_cast<std::size_t>(t[1])],
-                    x[static_cast<std::size_t>(t[2])]))
+  for(std::size_t f = 0; f < system.triangles.size(); ++f)
+    if(!state.face_positive(f)) // the state's own orientation test, kept up to date with every move
       for(int k = 0; k < 3; ++k)
       {
-        const std::size_t v = static_cast<std::size_t>(t[k]);
+        const std::size_t v = static_cast<std::size_t>(system.triangles[f][k]);
         near_fold[v] = 1;
         for(std::size_t j = system.offsets[v]; j < system.offsets[v + 1]; ++j)
           near_fold[static_cast<std::size_t>(system.neighbors[j])] = 1;
@@ -418,7 +419,7 @@ inline Iteration_report mobius_newton(Sphere_state& state, const Iteration_optio
         !damped_on_folds ? 0 : (state.invalid_faces() == damped_folds ? damped_fold_steps + 1 : 1);
     damped_folds = state.invalid_faces();
     if(damped_fold_steps >= tuning.free_newton_damped_fold_steps && options.least_distortion_follows
-       && balanced_away_from_folds(system, x, std::min(std::sqrt(options.tolerance), 1e-3)))
+       && balanced_away_from_folds(state, std::min(std::sqrt(options.tolerance), 1e-3)))
     {
       counts.folded_balanced_map = x;
       counts.gave_up = true;
