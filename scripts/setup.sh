@@ -30,9 +30,11 @@ fi
 # Configured after the extraction: the corpus cases are made from the meshes present at configure time.
 cmake -S . -B "$build" -DCMAKE_BUILD_TYPE=Release >/dev/null
 
-# Two jobs at most: one CGAL + Eigen translation unit needs about 1 GB and a minute.
+# Two jobs at most: one CGAL + Eigen translation unit needs up to 3 GB and a minute or more.
+start=$(date +%s)
 if [ $# -gt 0 ]; then
   cmake --build "$build" -j2 --target "$@"
 else
   cmake --build "$build" -j2
 fi
+echo "== build: $(( $(date +%s) - start )) s"

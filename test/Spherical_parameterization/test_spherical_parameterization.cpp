@@ -15,6 +15,7 @@
 #include <CGAL/Spherical_parameterization/internal/stage3/imbalance_least_squares.h>
 #include <CGAL/Spherical_parameterization/internal/stage3/least_distortion.h>
 #include <CGAL/Spherical_parameterization/internal/stage3/multilevel_least_distortion.h>
+#include <CGAL/Spherical_parameterization/internal/small_symmetric_matrix.h>
 #include <CGAL/Spherical_parameterization/internal/stage3/supernodal_ldlt.h>
 #include <CGAL/Spherical_parameterization/is_bijective_on_sphere.h> // certificate and distortion, through the header kept for earlier code
 #include <CGAL/Spherical_parameterization/spherical_parameterize.h>
@@ -1097,6 +1098,77 @@ TEST(SupernodalLdlt, SplitPatternGivesTheSameFactorOnOneOrTwoThreads)
     EXPECT_EQ((one_thread.pivots().array() < 0.).count(), (eigen.vectorD().array() < 0.).count()) << "shift " << shift;
     if(shift > 0.)
       EXPECT_GT((eigen.vectorD().array() < 0.).count(), 0);
+  }
+}
+
+// The package's own small symmetric eigen-decomposition and solve (internal/small_symmetric_matrix.h) against Eigen's
+// dynamic-size solvers, at the three sizes the package uses: separated, repeated, graded, semi-definite, indefinite.
+template <int N>
+void check_small_symmetric(std::mt19937& random)
+{
+  using Matrix = Eigen::Matrix<double, N, N>;
+  using Vector = Eigen::Matrix<double, N, 1>;
+  std::uniform_real_distribution<double> uniform(-1., 1.);
+  auto random_matrix = [&] { Matrix m; for(int i = 0; i < N; ++i) for(int j = 0; j < N; ++j) m(i, j) = uniform(random); return m; };
+  Vector ones = Vector::Ones(), graded;
+  for(int k = 0; k < N; ++k)
+    graded[k] = std::pow(1e-3, k);
+  const Matrix q = Eigen::MatrixXd(random_matrix()).householderQr().householderQ(); // a random rotation
+  std::vector<std::pair<const char*, Matrix>> cases = {
+      {"random", Matrix(random_matrix().template selfadjointView<Eigen::Lower>())},
+      {"repeated eigenvalue", Matrix(Matrix::Identity() + ones * ones.transpose())},
+      {"graded", Matrix(q * graded.asDiagonal() * q.transpose())},
+      {"semi-definite", Matrix(q * Vector(Vector::LinSpaced(0., 2.)).asDiagonal() * q.transpose())},
+      {"indefinite", Matrix(q * Vector(Vector::LinSpaced(-1., 2.)).asDiagonal() * q.transpose())}};
+  for(const auto& [name, a] : cases)
+  {
+    SCOPED_TRACE(std::string(name) + ", size " + std::to_string(N));
+    Vector values;
+    Matrix vectors;
+    ASSERT_TRUE(SPI::symmetric_eigen(a, values, vectors));
+    const double scale = a.norm();
+    const Eigen::VectorXd expected = Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd>(Eigen::MatrixXd(a)).eigenvalues();
+    EXPECT_LT((Eigen::VectorXd(values) - expected).norm(), 1e-14 * scale);
+    EXPECT_LT((vectors.transpose() * vectors - Matrix::Identity()).norm(), 1e-14);
+    EXPECT_LT((vectors * values.asDiagonal() * vectors.transpose() - a).norm(), 1e-14 * scale);
+    for(int k = 1; k < N; ++k)
+      EXPECT_LE(values[k - 1], values[k]);
+    if(std::string(name) == "semi-definite")
+      continue; // its solve below
+    const Vector b = Vector::LinSpaced(1., 2.);
+    const Vector x = SPI::solve_symmetric(a, b); // backward stable here (graded: condition number up to 1e15)
+    EXPECT_LT((a * x - b).norm(), 1e-14 * scale * x.norm());
+  }
+  // Only the lower triangle is read, as Eigen's ldlt() and SelfAdjointEigenSolver do.
+  Matrix lower = cases[0].second;
+  lower.template triangularView<Eigen::StrictlyUpper>().setConstant(7.);
+  Vector values, values_of_lower;
+  Matrix vectors;
+  ASSERT_TRUE(SPI::symmetric_eigen(cases[0].second, values, vectors));
+  ASSERT_TRUE(SPI::symmetric_eigen(lower, values_of_lower, vectors));
+  EXPECT_EQ(values, values_of_lower);
+  EXPECT_EQ(SPI::solve_symmetric(cases[0].second, ones), SPI::solve_symmetric(lower, ones));
+  // Singular: the component of a zero pivot is 0 (Eigen's LDLT::solve() makes the same choice).
+  Vector d = Vector::LinSpaced(1., 3.), b = Vector::LinSpaced(2., 5.);
+  d[N / 2] = 0.;
+  const Vector x = SPI::solve_symmetric(Matrix(d.asDiagonal()), b);
+  for(int k = 0; k < N; ++k)
+    EXPECT_EQ(x[k], k == N / 2 ? 0. : b[k] / d[k]) << k;
+  // Not finite: no decomposition, and a solve that is not finite either.
+  Matrix broken = cases[0].second;
+  broken(N - 1, 0) = std::numeric_limits<double>::quiet_NaN();
+  EXPECT_FALSE(SPI::symmetric_eigen(broken, values, vectors));
+  EXPECT_FALSE(SPI::solve_symmetric(broken, b).allFinite());
+}
+
+TEST(SmallSymmetricMatrix, EigenvaluesAndSolvesAsEigensAtSizesTwoThreeAndSix)
+{
+  std::mt19937 random(20261204);
+  for(int trial = 0; trial < 20; ++trial)
+  {
+    check_small_symmetric<2>(random);
+    check_small_symmetric<3>(random);
+    check_small_symmetric<6>(random);
   }
 }
 

@@ -24,6 +24,7 @@
 #ifndef CGAL_SPHERICAL_PARAMETERIZATION_INTERNAL_STAGE3_GLOBAL_NEWTON_H
 #define CGAL_SPHERICAL_PARAMETERIZATION_INTERNAL_STAGE3_GLOBAL_NEWTON_H
 
+#include <CGAL/Spherical_parameterization/internal/small_symmetric_matrix.h>
 #include <CGAL/Spherical_parameterization/internal/sphere_iterations.h>
 #include <CGAL/Spherical_parameterization/internal/stage3/constrained_balance.h>
 #include <CGAL/Spherical_parameterization/internal/stage3/imbalance_least_squares.h>
@@ -182,7 +183,7 @@ private:
       const Vector3 m = cross(x[i], d[i]);
       moment += Eigen::Vector3d(m.x, m.y, m.z);
     }
-    const Eigen::Vector3d omega = normal.ldlt().solve(moment);
+    const Eigen::Vector3d omega = solve_symmetric(normal, moment);
     const Vector3 w(omega[0], omega[1], omega[2]);
     for(std::size_t i = 0; i < x.size(); ++i)
       d[i] -= cross(w, x[i]);

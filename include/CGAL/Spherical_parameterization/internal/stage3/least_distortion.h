@@ -29,6 +29,7 @@
 #include <CGAL/Spherical_parameterization/internal/Vector3.h>
 #include <CGAL/Spherical_parameterization/internal/iteration_driver.h>
 #include <CGAL/Spherical_parameterization/internal/side_by_side.h>
+#include <CGAL/Spherical_parameterization/internal/small_symmetric_matrix.h>
 #include <CGAL/Spherical_parameterization/internal/stage3/mobius.h>
 #include <CGAL/Spherical_parameterization/internal/stage3/supernodal_ldlt.h>
 
@@ -376,8 +377,9 @@ inline std::size_t balance_distortion_boosts(const std::vector<std::array<int, 3
     Eigen::Matrix3d hessian;
     if(!boost_hessian(triangles, shapes, y, gradient, hessian, parallel, &buffer))
       return applied;
-    const Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> eigen(hessian);
-    if(eigen.info() != Eigen::Success || !(eigen.eigenvalues()[at_start ? 2 : 0] > 0.))
+    V3 eigenvalues;
+    Eigen::Matrix3d eigenvectors;
+    if(!symmetric_eigen(hessian, eigenvalues, eigenvectors) || !(eigenvalues[at_start ? 2 : 0] > 0.))
       break;
     // A start (the levels' map carried back, a repaired balanced map) may sit anywhere along the boosts, where F is not
     // convex: there the step is Newton's with the eigenvalues' magnitudes, the smallest raised to 1e-3 times the
@@ -388,9 +390,8 @@ inline std::size_t balance_distortion_boosts(const std::vector<std::array<int, 3
     // maps with slivers, these forward differences are mostly noise (oded_scorpion: the smallest eigenvalue from
     // -0.007 to 2e-4 between consecutive steps), and such boosts cost oded_scorpion 5 steps more.
     const V3 curvature =
-        at_start ? V3(eigen.eigenvalues().cwiseAbs().cwiseMax(1e-3 * eigen.eigenvalues()[2])) : V3(eigen.eigenvalues());
-    V3 step = -(eigen.eigenvectors() * curvature.cwiseInverse().asDiagonal() * eigen.eigenvectors().transpose()
-                * gradient);
+        at_start ? V3(eigenvalues.cwiseAbs().cwiseMax(1e-3 * eigenvalues[2])) : eigenvalues;
+    V3 step = -(eigenvectors * curvature.cwiseInverse().asDiagonal() * eigenvectors.transpose() * gradient);
     const double slope = gradient.dot(step);
     double energy = 0.;
     for(double term : terms)
@@ -593,13 +594,16 @@ inline int smooth_conformal_distortion(const std::vector<std::array<int, 3>>& tr
     const Eigen::Vector2d g2 = basis.transpose() * g;
     // The retraction's second order, as in minimize_conformal_distortion().
     Eigen::Matrix2d h2 = basis.transpose() * h * basis - g.dot(y[v]) * Eigen::Matrix2d::Identity();
-    const Eigen::SelfAdjointEigenSolver<Eigen::Matrix2d> eigen(h2);
-    const double lowest = eigen.eigenvalues()[0], highest = eigen.eigenvalues()[1];
+    Eigen::Vector2d eigenvalues;
+    Eigen::Matrix2d eigenvectors;
+    if(!symmetric_eigen(h2, eigenvalues, eigenvectors))
+      return 0.;
+    const double lowest = eigenvalues[0], highest = eigenvalues[1];
     if(!(highest > 0.))
       return 0.;
     if(lowest < 1e-3 * highest)
       h2 += (1e-3 * highest - lowest) * Eigen::Matrix2d::Identity();
-    const V3 step = basis * Eigen::Vector2d(-h2.ldlt().solve(g2));
+    const V3 step = basis * Eigen::Vector2d(-solve_symmetric(h2, g2));
     double shortest = std::numeric_limits<double>::infinity(), edges = 0., weight = 0.;
     for(std::size_t c = offsets[v]; c < offsets[v + 1]; ++c)
     {
@@ -975,9 +979,10 @@ inline Least_distortion_report minimize_conformal_distortion(const std::vector<s
       }
       if(!whole_hessian)
       {
-        Eigen::SelfAdjointEigenSolver<Eigen::Matrix<double, 6, 6>> eigen(h_tangent);
-        h_tangent = eigen.eigenvectors() * eigen.eigenvalues().cwiseMax(0.).asDiagonal()
-                    * eigen.eigenvectors().transpose();
+        Eigen::Matrix<double, 6, 1> eigenvalues;
+        Eigen::Matrix<double, 6, 6> eigenvectors;
+        if(symmetric_eigen(h_tangent, eigenvalues, eigenvectors)) // not finite: left so, the step fails on it
+          h_tangent = eigenvectors * eigenvalues.cwiseMax(0.).asDiagonal() * eigenvectors.transpose();
       }
       int k = 0;
       for_each_face_entry(f, [&](int, int, int local_row, int local_col) {

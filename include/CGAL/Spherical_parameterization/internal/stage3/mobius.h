@@ -29,6 +29,7 @@
 #include <CGAL/Spherical_parameterization/internal/Vector3.h>
 #include <CGAL/Spherical_parameterization/internal/iteration_driver.h>
 #include <CGAL/Spherical_parameterization/internal/side_by_side.h>
+#include <CGAL/Spherical_parameterization/internal/small_symmetric_matrix.h>
 
 #include <Eigen/Dense>
 
@@ -190,7 +191,7 @@ inline void remove_rotation_and_boost(const std::vector<Vector3>& x, std::vector
   for(int a = 0; a < 6; ++a)
     for(int b = 0; b < a; ++b)
       normal(a, b) = normal(b, a);
-  const Vector6 c = normal.ldlt().solve(moment);
+  const Vector6 c = solve_symmetric(normal, moment);
   if(!c.allFinite())
   {
     rotation = boost = Vector3();
