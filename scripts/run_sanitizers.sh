@@ -27,8 +27,9 @@ CC=clang-14 CXX=clang++-14 cmake -S . -B "$build" -DCMAKE_BUILD_TYPE=None -DCMAK
   -DCMAKE_EXE_LINKER_FLAGS="-fsanitize=address,undefined" -DSPHERICAL_PARAMETERIZATION_BUILD_FUZZER=ON \
   -DSPHERICAL_PARAMETERIZATION_BUILD_EXAMPLES=OFF -DSPHERICAL_PARAMETERIZATION_BUILD_BENCHMARKS=OFF \
   -DSPHERICAL_PARAMETERIZATION_CGAL_DATA="$PWD/${BUILD_DIR:-build}/cgal_data/data/meshes" >/dev/null
-# One unit-test binary and the fuzzer only: each sanitized CGAL + Eigen translation unit costs minutes.
-cmake --build "$build" -j2 --target test_spherical_parameterization fuzz_spherical_parameterization
+# One unit-test binary and the fuzzer only: each sanitized CGAL + Eigen translation unit costs minutes. Their common
+# target builds both at once.
+cmake --build "$build" -j2 --target unit_tests_and_fuzzer
 echo "== sanitizer build: $(( $(date +%s) - start )) s"
 
 # The small cases: everything but the tests that map meshes of thousands of vertices several times over.
