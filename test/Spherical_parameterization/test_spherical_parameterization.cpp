@@ -850,6 +850,55 @@ TEST(MobiusNewton, ConvergesQuadratically)
   }
 }
 
+// The test that ends Newton's steps through folds on a folded balanced map approached linearly (mobius_newton.h,
+// balanced_away_from_folds; the whole rule fires on bigbrain's finest level, a slow corpus case): true only where the
+// folds are local (their vertices and neighbours at most a hundredth of the mesh) and every other vertex balanced.
+TEST(MobiusNewton, BalancedAwayFromFoldsOnlyWhereTheFoldsAreLocalAndTheRestBalanced)
+{
+  const SPI::Mesh_arrays arrays = arrays_of(read_mesh(cgal_data + "/homer.off")); // 4,930 vertices
+  const SPI::Sphere_system system = system_of(arrays);
+  std::vector<SPI::Vector3> x = initial_sphere_of(arrays, system);
+  SPI::Sphere_state state(system, x);
+  SPI::Iteration_options options;
+  SPI::projected_gauss_seidel(state, options, started_timer());
+  ASSERT_TRUE(SPI::mobius_newton(state, options, started_timer()).converged);
+  ASSERT_EQ(state.invalid_faces(), 0u);
+  EXPECT_TRUE(SPI::balanced_away_from_folds(state, 1e-3));
+  const std::vector<SPI::Vector3> balanced = x;
+  // Vertex v jumps past one of its neighbours: only faces around v fold, and only v and its neighbours change imbalance.
+  auto unit = [](const SPI::Vector3& a) { return a * (1. / SPI::length(a)); };
+  auto jumped_past_a_neighbour = [&](std::size_t v) {
+    const SPI::Vector3 past = balanced[static_cast<std::size_t>(system.neighbors[system.offsets[v]])];
+    return unit(past + 0.5 * (past - balanced[v]));
+  };
+  const std::size_t v = 100;
+  std::vector<SPI::Vector3> y = balanced;
+  y[v] = jumped_past_a_neighbour(v);
+  state.assign(y);
+  ASSERT_GT(state.invalid_faces(), 0u);
+  ASSERT_LE(state.invalid_faces(), 6u);
+  EXPECT_TRUE(SPI::balanced_away_from_folds(state, 1e-3));
+  // A vertex far from the fold moved a third of the way to a neighbour: no longer balanced there.
+  std::size_t far = 0;
+  for(std::size_t i = 0; i < x.size(); ++i)
+    if(SPI::length(balanced[i] - balanced[v]) > SPI::length(balanced[far] - balanced[v]))
+      far = i;
+  const SPI::Vector3 toward = balanced[static_cast<std::size_t>(system.neighbors[system.offsets[far]])];
+  y[far] = unit(balanced[far] + (1. / 3.) * (toward - balanced[far]));
+  const std::size_t folded = state.invalid_faces();
+  state.assign(y);
+  ASSERT_EQ(state.invalid_faces(), folded);
+  EXPECT_GT(SPI::vertex_imbalance(system, x, far).imbalance, 1e-3);
+  EXPECT_FALSE(SPI::balanced_away_from_folds(state, 1e-3));
+  // Folds spread over the mesh (around 60 vertices, their neighbourhoods well over 1% of the 4,930): not local.
+  y = balanced;
+  for(std::size_t k = 0; k < 60; ++k)
+    y[80 * k] = jumped_past_a_neighbour(80 * k);
+  state.assign(y);
+  ASSERT_GT(state.invalid_faces(), 60u);
+  EXPECT_FALSE(SPI::balanced_away_from_folds(state, 1e-3));
+}
+
 // FreeSurfer surfaces: a file written by an independent writer (nibabel) is read and written back byte for byte.
 TEST(BrainSurfaces, FreeSurferRoundTripIsByteIdentical)
 {
