@@ -3323,10 +3323,15 @@ TEST(Inscribability, TetrahedronWeightsDecideTheBalancedMap)
 TEST(ProgressCallback, FollowsTheStagesAndCancels)
 {
   const Mesh mesh = read_mesh(cgal_data + "/triceratops.off");
-  std::vector<std::string> stages;
+  std::vector<std::string> stages; // one per iteration: a report repeated inside a lasting iteration is left out
   std::vector<double> seconds;
+  std::pair<std::string, std::size_t> previous("", 0);
   auto follow = [&](const SP::Progress& progress) {
-    stages.push_back(progress.stage);
+    // Inside an iteration that lasts, the last report is repeated with the time updated (every tenth of a second at
+    // most: Progress.h), more often on a loaded machine (CI ran it beside the sanitizer build: 6 reports, 5 steps).
+    if(previous != std::make_pair(std::string(progress.stage), progress.iteration))
+      stages.push_back(progress.stage);
+    previous = std::make_pair(std::string(progress.stage), progress.iteration);
     seconds.push_back(progress.seconds);
     EXPECT_TRUE(std::isfinite(progress.residual));
     // Measured at the end of stage 1 only: -1 in the per-iteration reports (it had repeated stage 1's value).
@@ -3350,8 +3355,8 @@ TEST(ProgressCallback, FollowsTheStagesAndCancels)
   // stage 1.
   for(std::size_t allowed : {3u, 0u})
   {
-    std::size_t calls = 0;
-    auto cancel = [&](const SP::Progress& progress) { return progress.iteration == 0 || ++calls < allowed; };
+    // By the iteration's number, not the number of calls: a lasting iteration's report may come more than once.
+    auto cancel = [&](const SP::Progress& progress) { return progress.iteration < allowed; };
     auto cancel_at_once = [](const SP::Progress&) { return false; };
     positions.clear();
     const SP::Result cancelled = allowed > 0
