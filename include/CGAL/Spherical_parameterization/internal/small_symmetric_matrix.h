@@ -8,8 +8,8 @@
 // Eigenvalues and linear solves of small symmetric matrices (2x2 to 6x6: a face's Hessian, the boosts' Hessian, the
 // normal equations of a rotation or Moebius fit) by short loops of our own. Eigen's SelfAdjointEigenSolver and LDLT,
 // instantiated at the three fixed sizes the package needs, cost every translation unit that includes it a third or more
-// of its compile time with GCC 12 (the install test's one-call program at -O3: 101 s -> 63 s; the command line
-// 183 s -> 147 s, the manual's Performance section).
+// of its compile time with GCC 12 (compiled one after the other at -O3: the install test's one-call program 183 s ->
+// 96 s, the command line 183 s -> 147 s; the manual's Performance section).
 
 #ifndef CGAL_SPHERICAL_PARAMETERIZATION_INTERNAL_SMALL_SYMMETRIC_MATRIX_H
 #define CGAL_SPHERICAL_PARAMETERIZATION_INTERNAL_SMALL_SYMMETRIC_MATRIX_H
