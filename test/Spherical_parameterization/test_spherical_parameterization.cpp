@@ -1860,6 +1860,33 @@ TEST(LeastDistortion, FaceEnergyDerivatives)
     EXPECT_NEAR((e_plus - e_minus) / (2 * h), gradient[c], 1e-7 * gradient.norm()) << c;
     EXPECT_LT(((g_plus - g_minus) / (2 * h) - hessian.col(c)).norm(), 1e-7 * hessian.norm()) << c;
   }
+  // In the corners' tangent bases, formed directly (as the minimization's steps do): the projection of the 9x9 ones,
+  // here and on a face squeezed to edges of 1e-9 (the slivers of thin limbs), with exactly symmetric Hessians.
+  for(const double size : {1., 1e-9})
+  {
+    D::V3 q[3];
+    for(int k = 0; k < 3; ++k)
+      q[k] = (p[0] + size * (p[k] - p[0])).normalized();
+    D::face_energy(shape, q, &gradient, &hessian);
+    Eigen::Matrix<double, 3, 2> basis[3];
+    Eigen::Matrix<double, 9, 6> projection = Eigen::Matrix<double, 9, 6>::Zero();
+    for(int k = 0; k < 3; ++k)
+    {
+      basis[k].col(0) = q[k].unitOrthogonal();
+      basis[k].col(1) = q[k].cross(basis[k].col(0));
+      projection.block<3, 2>(3 * k, 2 * k) = basis[k];
+    }
+    D::Vector9 full_gradient;
+    Eigen::Matrix<double, 6, 1> tangent_gradient;
+    Eigen::Matrix<double, 6, 6> tangent_hessian;
+    EXPECT_EQ(D::face_tangent_derivatives(shape, q, basis, full_gradient, tangent_gradient, tangent_hessian),
+              D::face_energy(shape, q));
+    EXPECT_EQ(full_gradient, gradient) << size;
+    const Eigen::Matrix<double, 6, 6> projected = projection.transpose() * hessian * projection;
+    EXPECT_LT((tangent_hessian - projected).norm(), 1e-13 * projected.norm()) << size;
+    EXPECT_LT((tangent_gradient - projection.transpose() * gradient).norm(), 1e-13 * gradient.norm()) << size;
+    EXPECT_TRUE(tangent_hessian == tangent_hessian.transpose()) << size;
+  }
   // A small face similar to its 3D triangle (equilateral: every cotangent 1/sqrt(3)): energy = its weight.
   D::Face_shape equilateral;
   equilateral.weight = 1.;

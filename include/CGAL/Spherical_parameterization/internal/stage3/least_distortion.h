@@ -210,6 +210,91 @@ inline double face_energy_at_corner(const Face_shape& shape, const V3 (&p)[3], i
   return energy;
 }
 
+// F_f, its gradient in the nine coordinates, and its gradient and Hessian in the corners' tangent bases `basis` (corner
+// k's 3x2, orthonormal columns): face_energy()'s Hessian H, block (a, b) taken as basis[a]^T H_ab basis[b], but
+// formed in the six coordinates directly (each outer product of two gradients is one of their projections; the blocks
+// of Q's and det's Hessians are 2x2 products of the bases), a third of the operations of the 9x9 Hessian and its
+// projection (bunny00's 75,408 faces at its map: 0.24 against 0.82 microseconds). The retraction's term is the caller's.
+inline double face_tangent_derivatives(const Face_shape& shape, const V3 (&p)[3],
+                                       const Eigen::Matrix<double, 3, 2> (&basis)[3], Vector9& gradient,
+                                       Eigen::Matrix<double, 6, 1>& tangent_gradient,
+                                       Eigen::Matrix<double, 6, 6>& tangent_hessian)
+{
+  const Face_terms terms(shape, p);
+  const V3& c = terms.c;
+  const double c_norm = terms.c_norm, det = terms.det, scale = terms.scale, s = terms.s, q = terms.q;
+  double L[3][3] = {{0., 0., 0.}, {0., 0., 0.}, {0., 0., 0.}}; // face_energy()'s L, by the same sums
+  for(int k = 0; k < 3; ++k)
+  {
+    const int i = (k + 1) % 3, j = (k + 2) % 3;
+    L[i][i] += shape.cot[k];
+    L[j][j] += shape.cot[k];
+    L[i][j] -= shape.cot[k];
+    L[j][i] -= shape.cot[k];
+  }
+  Vector9 grad_q, grad_det;
+  const V3 grad_c = c / (3. * c_norm); // the same at every corner
+  for(int i = 0; i < 3; ++i)
+  {
+    const int j = (i + 1) % 3, k = (i + 2) % 3;
+    grad_q.segment<3>(3 * i) = 2. * (L[i][j] * (p[j] - p[i]) + L[i][k] * (p[k] - p[i]));
+    grad_det.segment<3>(3 * i) = p[i].cross(p[k] - p[j]) + (p[j] - p[i]).cross(p[k] - p[i]);
+  }
+  Vector9 grad_s;
+  for(int i = 0; i < 3; ++i)
+    grad_s.segment<3>(3 * i) = scale * (grad_det.segment<3>(3 * i) / c_norm - det * grad_c / (c_norm * c_norm));
+  const double w = shape.weight / 2.;
+  gradient = w * (grad_q / s - q * grad_s / (s * s));
+  // The projections (6-vectors) of the gradients, and of c.
+  Eigen::Matrix<double, 6, 1> tq, tdet, tc, ts, tcent;
+  for(int k = 0; k < 3; ++k)
+  {
+    const Eigen::Matrix<double, 2, 3> bt = basis[k].transpose();
+    tq.segment<2>(2 * k) = bt * grad_q.segment<3>(3 * k);
+    tdet.segment<2>(2 * k) = bt * grad_det.segment<3>(3 * k);
+    tc.segment<2>(2 * k) = bt * grad_c;
+    ts.segment<2>(2 * k) = bt * grad_s.segment<3>(3 * k);
+    tcent.segment<2>(2 * k) = bt * c;
+    tangent_gradient.segment<2>(2 * k) = bt * gradient.segment<3>(3 * k);
+  }
+  // Q's Hessian is 2 L (x) I3, det's has -[p_k]x in block (i, j) and [p_k]x in (j, i) for j = i + 1, k = i + 2, and
+  // |c|'s (floored) is (I - c c^T / |c|^2) / (9 |c|) in every block.
+  const double c2 = c_norm * c_norm;
+  for(int a = 0; a < 3; ++a)
+    for(int b = 0; b <= a; ++b)
+    {
+      const Eigen::Matrix2d dots = basis[a].transpose() * basis[b];
+      Eigen::Matrix2d hess_det = Eigen::Matrix2d::Zero();
+      if(a != b)
+      {
+        // (a, b) = (j, i) with j = i + 1 (mod 3): [p_k]x, k the third corner; (a, b) = (i, j): -[p_k]x.
+        const int k = 3 - a - b;
+        const double sign = a == (b + 1) % 3 ? 1. : -1.;
+        for(int r = 0; r < 2; ++r)
+          for(int t = 0; t < 2; ++t)
+            hess_det(r, t) = sign * basis[a].col(r).dot(p[k].cross(basis[b].col(t)));
+      }
+      const Eigen::Matrix2d hess_c =
+          (dots - tcent.segment<2>(2 * a) * tcent.segment<2>(2 * b).transpose() / c2) / (9. * c_norm);
+      const Eigen::Matrix2d hess_s =
+          scale * (hess_det / c_norm
+                   - (tdet.segment<2>(2 * a) * tc.segment<2>(2 * b).transpose()
+                      + tc.segment<2>(2 * a) * tdet.segment<2>(2 * b).transpose()) / c2
+                   + 2. * det * tc.segment<2>(2 * a) * tc.segment<2>(2 * b).transpose() / (c2 * c_norm)
+                   - det * hess_c / c2);
+      Eigen::Matrix2d block =
+          w * (2. * L[a][b] * dots / s
+               - (tq.segment<2>(2 * a) * ts.segment<2>(2 * b).transpose()
+                  + ts.segment<2>(2 * a) * tq.segment<2>(2 * b).transpose()) / (s * s)
+               + 2. * q * ts.segment<2>(2 * a) * ts.segment<2>(2 * b).transpose() / (s * s * s) - q * hess_s / (s * s));
+      if(a == b)
+        block(0, 1) = block(1, 0); // symmetric to the last bit, as the blocks off the diagonal are
+      tangent_hessian.block<2, 2>(2 * a, 2 * b) = block;
+      tangent_hessian.block<2, 2>(2 * b, 2 * a) = block.transpose();
+    }
+  return terms.energy;
+}
+
 // The shapes of the 3D triangles (their cotangents, their areas over the sum); false if one is degenerate.
 inline bool face_shapes(const std::vector<std::array<int, 3>>& triangles, const std::vector<Vector3>& points,
                         std::vector<Face_shape>& shapes)
@@ -953,18 +1038,17 @@ inline Least_distortion_report minimize_conformal_distortion(const std::vector<s
       V3 p[3];
       corners(y, f, p);
       Vector9 g;
-      Matrix9 h;
-      out.energy = face_energy(shapes[f], p, &g, &h);
-      Eigen::Matrix<double, 9, 6> basis = Eigen::Matrix<double, 9, 6>::Zero();
+      Eigen::Matrix<double, 3, 2> basis[3];
       for(int k = 0; k < 3; ++k)
       {
         const int v = triangles[f][k];
-        basis.block<3, 1>(3 * k, 2 * k) = t1[v];
-        basis.block<3, 1>(3 * k, 2 * k + 1) = t2[v];
+        basis[k].col(0) = t1[v];
+        basis[k].col(1) = t2[v];
         out.chords[k] = (p[(k + 1) % 3] - p[k]).norm() + (p[(k + 2) % 3] - p[k]).norm();
       }
-      const Eigen::Matrix<double, 6, 1> g_tangent = basis.transpose() * g;
-      Eigen::Matrix<double, 6, 6> h_tangent = basis.transpose() * h * basis;
+      Eigen::Matrix<double, 6, 1> g_tangent;
+      Eigen::Matrix<double, 6, 6> h_tangent;
+      out.energy = face_tangent_derivatives(shapes[f], p, basis, g, g_tangent, h_tangent);
       // Second order of the retraction (y + v) / |y + v| = y + v - |v|^2 y / 2: minus the radial gradient.
       for(int k = 0; k < 3; ++k)
       {
