@@ -214,7 +214,8 @@ inline double face_energy_at_corner(const Face_shape& shape, const V3 (&p)[3], i
 // k's 3x2, orthonormal columns): face_energy()'s Hessian H, block (a, b) taken as basis[a]^T H_ab basis[b], but
 // formed in the six coordinates directly (each outer product of two gradients is one of their projections; the blocks
 // of Q's and det's Hessians are 2x2 products of the bases), a third of the operations of the 9x9 Hessian and its
-// projection (bunny00's 75,408 faces at its map: 0.24 against 0.82 microseconds). The retraction's term is the caller's.
+// projection (bunny00's 75,408 faces at its map: 0.24 against 0.82 microseconds). The retraction's term is the
+// caller's.
 inline double face_tangent_derivatives(const Face_shape& shape, const V3 (&p)[3],
                                        const Eigen::Matrix<double, 3, 2> (&basis)[3], Vector9& gradient,
                                        Eigen::Matrix<double, 6, 1>& tangent_gradient,
