@@ -26,13 +26,13 @@ namespace Spherical_parameterization {
 namespace internal {
 
 // A = V diag(values) V^T: values ascending, V's columns orthonormal; reads the lower triangle, as Eigen's solvers do.
-// False (and nothing written) when an entry is not finite. The method is Eigen's and LAPACK's: Householder reflections
-// reduce A to a tridiagonal T = Q^T A Q, then implicit symmetric QR steps with Wilkinson's shift (Golub and Van Loan,
-// "Matrix Computations", 8.3) drive T's off-diagonal to zero, an entry set to 0 once it is below eps times its two
-// diagonal neighbours. Eigenvalues to eps |A| (absolute accuracy, as Eigen's). The matrix is scaled by its largest
-// entry first (no overflow in the squares). On 20,000 of bunny00's 6x6 per-face Hessians (least_distortion.h), a
-// decomposition and the projection V max(D, 0) V^T took 1.2 to 1.3 microseconds, as with Eigen's
-// SelfAdjointEigenSolver, against 2.7 for the cyclic Jacobi rotations used before (2026-12-04).
+// False (and nothing written) when an entry is not finite, or in the unlikely case that the QR steps do not settle
+// within 30 N steps. The method is Eigen's and LAPACK's: Householder reflections reduce A to a tridiagonal
+// T = Q^T A Q, then implicit symmetric QR steps with Wilkinson's shift (Golub and Van Loan, "Matrix Computations", 8.3)
+// on T's diagonal and subdiagonal drive the subdiagonal to zero. Eigenvalues to eps |A| (absolute accuracy, as
+// Eigen's). The matrix is scaled by its largest entry first (no overflow in the squares). On 20,000 of bunny00's 6x6
+// per-face Hessians (least_distortion.h), a decomposition and the projection V max(D, 0) V^T took 1.0 microseconds,
+// Eigen's SelfAdjointEigenSolver 1.2, the cyclic Jacobi rotations used before 2.7 (2026-12-04).
 template <int N>
 bool symmetric_eigen(const Eigen::Matrix<double, N, N>& matrix, Eigen::Matrix<double, N, 1>& values,
                      Eigen::Matrix<double, N, N>& vectors)
@@ -59,7 +59,7 @@ bool symmetric_eigen(const Eigen::Matrix<double, N, N>& matrix, Eigen::Matrix<do
     double tail = 0.;
     for(int i = k + 2; i < N; ++i)
       tail += t[i][k] * t[i][k];
-    if(tail == 0.)
+    if(tail <= std::numeric_limits<double>::min()) // entries of 1e-154 |A| or less dropped: beta would overflow
       continue;
     const double head = t[k + 1][k];
     const double alpha = -std::copysign(std::sqrt(head * head + tail), head);
@@ -94,28 +94,43 @@ bool symmetric_eigen(const Eigen::Matrix<double, N, N>& matrix, Eigen::Matrix<do
         q[r][j] -= beta * sum * v[j];
     }
   }
-  // QR steps on the lowest unreduced block [low, high]: a rotation of rows and columns k, k + 1 chases the bulge down.
+  // The tridiagonal T as its diagonal d and subdiagonal e (e[i] = T(i + 1, i)): kept so, T stays exactly symmetric
+  // (as a full matrix whose two triangles were rotated separately it drifted apart by rounding, and a block of two
+  // eigenvalues at rounding level no rotation could diagonalize took every step: a reviewer's A = Q diag(-1, -1, 0, 0,
+  // 1, 1) Q^T, 71 in 20,000, returned wrong eigenvalues).
+  double d[N], e[N];
+  for(int i = 0; i < N; ++i)
+  {
+    d[i] = t[i][i];
+    e[i] = i + 1 < N ? t[i + 1][i] : 0.;
+  }
+  // QR steps on the lowest unreduced block [low, high], each rotation of rows and columns k, k + 1 chasing the bulge
+  // down. e[i] counts as 0 below eps (|d[i]| + |d[i + 1]|), or below eps^2 (|A| is 1 here: far below the accuracy).
   const double eps = std::numeric_limits<double>::epsilon();
+  bool converged = false;
   for(int step = 0; step < 30 * N; ++step) // two or three steps per eigenvalue, as a rule
   {
     for(int i = 0; i + 1 < N; ++i)
-      if(std::abs(t[i + 1][i]) <= eps * (std::abs(t[i][i]) + std::abs(t[i + 1][i + 1])))
-        t[i + 1][i] = t[i][i + 1] = 0.;
+      if(std::abs(e[i]) <= eps * (std::abs(d[i]) + std::abs(d[i + 1])) || std::abs(e[i]) <= eps * eps)
+        e[i] = 0.;
     int high = N - 1;
-    while(high > 0 && t[high][high - 1] == 0.)
+    while(high > 0 && e[high - 1] == 0.)
       --high;
     if(high == 0)
+    {
+      converged = true;
       break;
+    }
     int low = high - 1;
-    while(low > 0 && t[low][low - 1] != 0.)
+    while(low > 0 && e[low - 1] != 0.)
       --low;
     // Wilkinson's shift: the eigenvalue of the block's last 2x2 closer to its last diagonal entry.
-    const double e = t[high][high - 1], d = 0.5 * (t[high - 1][high - 1] - t[high][high]);
-    const double shift = t[high][high] - e * e / (d + std::copysign(std::hypot(d, e), d));
-    double x = t[low][low] - shift, z = t[low + 1][low];
+    const double last = e[high - 1], half = 0.5 * (d[high - 1] - d[high]);
+    const double shift = d[high] - last * last / (half + std::copysign(std::hypot(half, last), half));
+    double x = d[low] - shift, z = e[low];
     for(int k = low; k < high; ++k)
     {
-      // The rotation [c s; -s c] with c x - s z = r, s x + c z = 0.
+      // The rotation [c s; -s c] with c x - s z = r, s x + c z = 0: T = G^T T G on rows and columns k, k + 1.
       double c = 1., s = 0.;
       if(std::abs(z) > std::abs(x))
       {
@@ -129,19 +144,12 @@ bool symmetric_eigen(const Eigen::Matrix<double, N, N>& matrix, Eigen::Matrix<do
         c = 1. / std::sqrt(1. + ratio * ratio);
         s = c * ratio;
       }
-      const int first = std::max(low, k - 1), last = std::min(high, k + 2);
-      for(int j = first; j <= last; ++j)
-      {
-        const double upper = t[k][j], lower = t[k + 1][j];
-        t[k][j] = c * upper - s * lower;
-        t[k + 1][j] = s * upper + c * lower;
-      }
-      for(int i = first; i <= last; ++i)
-      {
-        const double left = t[i][k], right = t[i][k + 1];
-        t[i][k] = c * left - s * right;
-        t[i][k + 1] = s * left + c * right;
-      }
+      if(k > low)
+        e[k - 1] = c * x - s * z; // the bulge below it is zeroed
+      const double a = d[k], b = e[k], g = d[k + 1];
+      d[k] = c * c * a - 2. * c * s * b + s * s * g;
+      d[k + 1] = s * s * a + 2. * c * s * b + c * c * g;
+      e[k] = c * s * (a - g) + (c * c - s * s) * b;
       for(int r = 0; r < N; ++r)
       {
         const double left = q[r][k], right = q[r][k + 1];
@@ -150,20 +158,23 @@ bool symmetric_eigen(const Eigen::Matrix<double, N, N>& matrix, Eigen::Matrix<do
       }
       if(k + 1 < high)
       {
-        x = t[k + 1][k];
-        z = t[k + 2][k];
+        x = e[k];
+        z = -s * e[k + 1]; // the bulge at (k + 2, k)
+        e[k + 1] *= c;
       }
     }
   }
+  if(!converged)
+    return false;
   int order[N];
   for(int i = 0; i < N; ++i)
     order[i] = i;
   for(int i = 1; i < N; ++i) // insertion sort, ascending
-    for(int j = i; j > 0 && t[order[j]][order[j]] < t[order[j - 1]][order[j - 1]]; --j)
+    for(int j = i; j > 0 && d[order[j]] < d[order[j - 1]]; --j)
       std::swap(order[j], order[j - 1]);
   for(int k = 0; k < N; ++k)
   {
-    values(k) = scale * t[order[k]][order[k]];
+    values(k) = scale * d[order[k]];
     for(int r = 0; r < N; ++r)
       vectors(r, k) = q[r][order[k]];
   }
