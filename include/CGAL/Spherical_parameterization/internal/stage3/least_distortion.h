@@ -115,6 +115,39 @@ struct Face_terms
   }
 };
 
+// What F_f's gradient and Hessian share (face_energy(), face_tangent_derivatives()): the face's cotangent Laplacian L
+// (Q = p^T (L x I3) p), and the gradients of Q, det, |c| (floored) and s in the nine coordinates, and F_f's.
+struct Face_gradients
+{
+  Eigen::Matrix3d L = Eigen::Matrix3d::Zero();
+  Vector9 grad_q, grad_det, grad_c, grad_s, gradient;
+
+  Face_gradients(const Face_shape& shape, const V3 (&p)[3], const Face_terms& terms)
+  {
+    for(int k = 0; k < 3; ++k)
+    {
+      const int i = (k + 1) % 3, j = (k + 2) % 3;
+      L(i, i) += shape.cot[k];
+      L(j, j) += shape.cot[k];
+      L(i, j) -= shape.cot[k];
+      L(j, i) -= shape.cot[k];
+    }
+    // grad_q and grad_det in the relative form too (L's rows sum to 0; p_j x p_k = p_i x (p_k - p_j) + (p_j - p_i) x
+    // (p_k - p_i)): the absolute forms sum_j L_ij p_j and p_j x p_k lost five digits to cancellation on faces squeezed
+    // to edges of 1e-10 (CGAL's bull: the gradient's sum along a boost came out as 14.6 where differences of F give
+    // 0.001), and the minimization crawled on that noise.
+    for(int i = 0; i < 3; ++i)
+    {
+      const int j = (i + 1) % 3, k = (i + 2) % 3;
+      grad_q.segment<3>(3 * i) = 2. * (L(i, j) * (p[j] - p[i]) + L(i, k) * (p[k] - p[i]));
+      grad_det.segment<3>(3 * i) = p[i].cross(p[k] - p[j]) + (p[j] - p[i]).cross(p[k] - p[i]);
+      grad_c.segment<3>(3 * i) = terms.c / (3. * terms.c_norm);
+    }
+    grad_s = terms.scale * (grad_det / terms.c_norm - terms.det * grad_c / (terms.c_norm * terms.c_norm));
+    gradient = shape.weight / 2. * (grad_q / terms.s - terms.q * grad_s / (terms.s * terms.s));
+  }
+};
+
 // F_f, and when asked its gradient and Hessian in the nine coordinates. s = N.c / |c| (twice the signed area; c the
 // centroid, N = (p1 - p0) x (p2 - p0), so N.c = det(p0, p1, p2)); Q = sum_k cot_k |e'_k|^2 (the face's cotangent form).
 inline double face_energy(const Face_shape& shape, const V3 (&p)[3], Vector9* gradient = nullptr,
@@ -126,32 +159,12 @@ inline double face_energy(const Face_shape& shape, const V3 (&p)[3], Vector9* gr
   const double energy = terms.energy;
   if(gradient == nullptr)
     return energy;
-
-  // Q = p^T (L x I3) p with L the face's cotangent Laplacian.
-  Eigen::Matrix3d L = Eigen::Matrix3d::Zero();
-  for(int k = 0; k < 3; ++k)
-  {
-    const int i = (k + 1) % 3, j = (k + 2) % 3;
-    L(i, i) += shape.cot[k];
-    L(j, j) += shape.cot[k];
-    L(i, j) -= shape.cot[k];
-    L(j, i) -= shape.cot[k];
-  }
-  // grad_q and grad_det in the relative form too (L's rows sum to 0; p_j x p_k = p_i x (p_k - p_j) + (p_j - p_i) x
-  // (p_k - p_i)): the absolute forms sum_j L_ij p_j and p_j x p_k lost five digits to cancellation on faces squeezed to
-  // edges of 1e-10 (CGAL's bull: the gradient's sum along a boost came out as 14.6 where differences of F give 0.001),
-  // and the minimization crawled on that noise.
-  Vector9 grad_q, grad_det, grad_c;
-  for(int i = 0; i < 3; ++i)
-  {
-    const int j = (i + 1) % 3, k = (i + 2) % 3;
-    grad_q.segment<3>(3 * i) = 2. * (L(i, j) * (p[j] - p[i]) + L(i, k) * (p[k] - p[i]));
-    grad_det.segment<3>(3 * i) = p[i].cross(p[k] - p[j]) + (p[j] - p[i]).cross(p[k] - p[i]);
-    grad_c.segment<3>(3 * i) = c / (3. * c_norm);
-  }
-  const Vector9 grad_s = scale * (grad_det / c_norm - det * grad_c / (c_norm * c_norm));
+  const Face_gradients gradients(shape, p, terms);
+  const Eigen::Matrix3d& L = gradients.L;
+  const Vector9 &grad_q = gradients.grad_q, &grad_det = gradients.grad_det, &grad_c = gradients.grad_c,
+                &grad_s = gradients.grad_s;
   const double w = shape.weight / 2.;
-  *gradient = w * (grad_q / s - q * grad_s / (s * s));
+  *gradient = gradients.gradient;
   if(hessian == nullptr)
     return energy;
 
@@ -224,28 +237,12 @@ inline double face_tangent_derivatives(const Face_shape& shape, const V3 (&p)[3]
   const Face_terms terms(shape, p);
   const V3& c = terms.c;
   const double c_norm = terms.c_norm, det = terms.det, scale = terms.scale, s = terms.s, q = terms.q;
-  double L[3][3] = {{0., 0., 0.}, {0., 0., 0.}, {0., 0., 0.}}; // face_energy()'s L, by the same sums
-  for(int k = 0; k < 3; ++k)
-  {
-    const int i = (k + 1) % 3, j = (k + 2) % 3;
-    L[i][i] += shape.cot[k];
-    L[j][j] += shape.cot[k];
-    L[i][j] -= shape.cot[k];
-    L[j][i] -= shape.cot[k];
-  }
-  Vector9 grad_q, grad_det;
-  const V3 grad_c = c / (3. * c_norm); // the same at every corner
-  for(int i = 0; i < 3; ++i)
-  {
-    const int j = (i + 1) % 3, k = (i + 2) % 3;
-    grad_q.segment<3>(3 * i) = 2. * (L[i][j] * (p[j] - p[i]) + L[i][k] * (p[k] - p[i]));
-    grad_det.segment<3>(3 * i) = p[i].cross(p[k] - p[j]) + (p[j] - p[i]).cross(p[k] - p[i]);
-  }
-  Vector9 grad_s;
-  for(int i = 0; i < 3; ++i)
-    grad_s.segment<3>(3 * i) = scale * (grad_det.segment<3>(3 * i) / c_norm - det * grad_c / (c_norm * c_norm));
+  const Face_gradients gradients(shape, p, terms);
+  const Eigen::Matrix3d& L = gradients.L;
+  const Vector9 &grad_q = gradients.grad_q, &grad_det = gradients.grad_det, &grad_s = gradients.grad_s;
+  const V3 grad_c = gradients.grad_c.segment<3>(0); // the same at every corner
   const double w = shape.weight / 2.;
-  gradient = w * (grad_q / s - q * grad_s / (s * s));
+  gradient = gradients.gradient;
   // The projections (6-vectors) of the gradients, and of c.
   Eigen::Matrix<double, 6, 1> tq, tdet, tc, ts, tcent;
   for(int k = 0; k < 3; ++k)
@@ -284,7 +281,7 @@ inline double face_tangent_derivatives(const Face_shape& shape, const V3 (&p)[3]
                    + 2. * det * tc.segment<2>(2 * a) * tc.segment<2>(2 * b).transpose() / (c2 * c_norm)
                    - det * hess_c / c2);
       Eigen::Matrix2d block =
-          w * (2. * L[a][b] * dots / s
+          w * (2. * L(a, b) * dots / s
                - (tq.segment<2>(2 * a) * ts.segment<2>(2 * b).transpose()
                   + ts.segment<2>(2 * a) * tq.segment<2>(2 * b).transpose()) / (s * s)
                + 2. * q * ts.segment<2>(2 * a) * ts.segment<2>(2 * b).transpose() / (s * s * s) - q * hess_s / (s * s));
