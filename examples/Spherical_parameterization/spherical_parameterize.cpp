@@ -182,7 +182,8 @@ void print_usage(std::ostream& out)
          "  map of least conformal distortion; the other four null when it is not), balanced_map_folded\n"
          "  (--least-distortion: the weights' balanced map reached was folded, the minimization followed at once),\n"
          "  least_distortion_from_balanced_map (the minimization started from that folded map, repaired, not from\n"
-         "  its own coarser levels),\n"
+         "  its own coarser levels), replaced_balanced_map_distortion (the distortion, above 1.1, of a balanced and\n"
+         "  certified map of the weights given that the least-distortion map replaced; null otherwise),\n"
          "  max_stationarity and unstationary_vertices (non-symmetric weights, else null), residual (Res),\n"
          "  max_tangential_residual, flipped_faces, total_signed_area, bijective,\n"
          "  distortion.{mean_angle_error_degrees,max_angle_error_degrees,log_area_ratio_stddev} (each corner's\n"
@@ -566,6 +567,8 @@ void print_json(std::ostream& out, const SP::Result& r, const Run_figures& run)
       {"least_distortion_map", boolean(r.least_distortion_map)},
       {"balanced_map_folded", boolean(r.balanced_map_folded)},
       {"least_distortion_from_balanced_map", boolean(r.least_distortion_from_balanced_map)},
+      {"replaced_balanced_map_distortion",
+       json_number(r.replaced_balanced_map_distortion, computed && r.replaced_balanced_map_distortion >= 0.)},
       {"distortion_energy", json_number(r.distortion_energy, computed && r.least_distortion_map)},
       {"max_distortion_stationarity", json_number(r.max_distortion_stationarity, computed && r.least_distortion_map)},
       {"least_distortion_steps", json_count(r.least_distortion_steps, computed && r.least_distortion_map)},
@@ -651,6 +654,10 @@ void print_text(std::ostream& out, const SP::Result& r, const Run_figures& run)
         << r.distortion_vertices_at_rounding_floor << " vertices held to their rounding floor)"
         << (r.balanced_map_folded ? "; the balanced map of the weights given that Newton's steps reached is folded" : "")
         << (r.least_distortion_from_balanced_map ? " (the minimization started from it, its folds repaired)" : "")
+        << (r.replaced_balanced_map_distortion >= 0.
+                ? "; the balanced map of the weights given that was reached has distortion "
+                      + std::to_string(r.replaced_balanced_map_distortion) + ": its triangles did not keep their shape"
+                : std::string())
         << "\n";
   if(r.held_weight_vertices > 0)
     out << "held weights:    " << r.held_weight_vertices << " of the " << r.number_of_vertices

@@ -2383,6 +2383,32 @@ TEST(SphericalParameterize, LeastDistortion)
     EXPECT_NEAR(SP::measure_spherical_distortion(mesh, sphere).mean_angle_error_degrees, without, 1e-3);
   }
   {
+    // Dragknob's cotangent weights: balanced to 1e-10 and bijective, but far along the boosts, its faces squeezed
+    // (distortion 6.5e10, 59.9 degrees of angle error, 2026-12-05). Its distortion is above
+    // Solver_tuning::balanced_map_max_distortion: the minimization follows, and its map replaces the balanced one,
+    // saying so (3.0 degrees).
+    const SP::Result plain = run("dragknob.off", SP::Weighting::COTANGENT, false, &without);
+    EXPECT_EQ(plain.status, SP::Error_code::OK) << plain.message;
+    EXPECT_LE(plain.max_imbalance, 1e-6);
+    EXPECT_EQ(plain.replaced_balanced_map_distortion, -1.);
+    const SP::Result result = run("dragknob.off", SP::Weighting::COTANGENT, true, &with);
+    EXPECT_EQ(result.status, SP::Error_code::OK) << result.message;
+    EXPECT_TRUE(result.least_distortion_map);
+    EXPECT_FALSE(result.balanced_map_folded);
+    EXPECT_GT(result.replaced_balanced_map_distortion, 1.1);
+    EXPECT_LT(result.distortion_energy, result.replaced_balanced_map_distortion);
+    EXPECT_LE(result.max_distortion_stationarity, 1e-6);
+    EXPECT_GT(result.max_imbalance, 1e-6); // not balanced, and it says so
+    EXPECT_LT(with, without / 4.);
+    // A balanced map that keeps its triangles' shapes stays (homer: distortion 1.036, its minimum 1.027).
+    double homer = 0.;
+    const SP::Result kept = run("homer.off", SP::Weighting::COTANGENT, true, &homer);
+    EXPECT_EQ(kept.status, SP::Error_code::OK) << kept.message;
+    EXPECT_FALSE(kept.least_distortion_map);
+    EXPECT_EQ(kept.replaced_balanced_map_distortion, -1.);
+    EXPECT_LE(kept.max_imbalance, 1e-6);
+  }
+  {
     // A cancel during the minimization that follows the fold: status CANCELLED, the flag still reported (the fold
     // was reached), and the iterate written is bijective (the minimization keeps every triangle positive).
     Mesh mesh = read_mesh(cgal_data + "/cow.off");

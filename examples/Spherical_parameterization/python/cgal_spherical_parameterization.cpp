@@ -135,6 +135,7 @@ py::dict result_dict(const SP::Result& r, const std::string& weights, const std:
   d["least_distortion_map"] = r.least_distortion_map;
   d["balanced_map_folded"] = r.balanced_map_folded;
   d["least_distortion_from_balanced_map"] = r.least_distortion_from_balanced_map;
+  d["replaced_balanced_map_distortion"] = number(r.replaced_balanced_map_distortion);
   d["distortion_energy"] = number(r.distortion_energy);
   d["max_distortion_stationarity"] = number(r.max_distortion_stationarity);
   d["least_distortion_steps"] = count_if(r.least_distortion_steps, r.least_distortion_map);

@@ -120,6 +120,12 @@ struct Result
   /// its folds repaired (the vertices of its non-positive faces moved into their rings' kernels, then smoothed), not
   /// from its own coarser levels (the manual's Method section). False otherwise.
   bool least_distortion_from_balanced_map = false;
+  /// When `least_distortion_map` although the map of the weights given was balanced and certified: that map's
+  /// conformal distortion (as `distortion_energy` measures it), above 1.1, which its triangles did not keep their
+  /// shape by (balanced maps of cotangent weights can sit far along the boosts, their faces squeezed: the manual's
+  /// Method section); the minimization followed it and its map, of lower distortion, is the one returned. -1
+  /// otherwise.
+  double replaced_balanced_map_distortion = -1.;
   /// The conformal distortion of the map returned when `least_distortion_map`: the mean, weighted by 3D area, of
   /// \f$(\sigma_1^2 + \sigma_2^2) / (2 \sigma_1 \sigma_2)\f$ over the affine maps from each 3D triangle to the flat
   /// triangle through its sphere points, each term measured with the area signed by the sphere's orientation (so a

@@ -13,6 +13,7 @@
 
 #include <CGAL/Spherical_parameterization/check_input.h>
 #include <CGAL/Spherical_parameterization/internal/Mesh_arrays.h>
+#include <CGAL/Spherical_parameterization/internal/angle_error.h>
 
 #include <CGAL/Named_function_parameters.h>
 #include <CGAL/boost/graph/named_params_helper.h>
@@ -79,38 +80,26 @@ Spherical_distortion measure_spherical_distortion(const TriangleMesh& tm, Vertex
   using internal::Vector3;
   const internal::Mesh_arrays mesh = internal::read_mesh_arrays(tm, CGAL::get_initialized_vertex_index_map(tm, np), np);
   const std::vector<Vector3> x = internal::read_sphere_map(tm, vsm, np);
-  auto angle = [](const Vector3& a, const Vector3& b) {
-    return std::atan2(internal::length(internal::cross(a, b)), internal::dot(a, b));
-  };
   auto area = [](const Vector3& a, const Vector3& b, const Vector3& c) {
     return 0.5 * internal::length(internal::cross(b - a, c - a));
   };
 
   Spherical_distortion distortion;
+  const internal::Angle_error angles = internal::angle_error(mesh.points, mesh.triangles, x);
+  distortion.mean_angle_error_degrees = angles.mean_degrees;
+  distortion.max_angle_error_degrees = angles.max_degrees;
   double mesh_total = 0., sphere_total = 0.;
   std::vector<double> mesh_areas, sphere_areas;
-  std::size_t corners = 0;
   for(const auto& t : mesh.triangles)
   {
     const Vector3 p[3] = {mesh.points[std::size_t(t[0])], mesh.points[std::size_t(t[1])],
                           mesh.points[std::size_t(t[2])]};
     const Vector3 q[3] = {x[std::size_t(t[0])], x[std::size_t(t[1])], x[std::size_t(t[2])]};
-    for(int k = 0; k < 3; ++k)
-    {
-      const double a_mesh = angle(p[(k + 1) % 3] - p[k], p[(k + 2) % 3] - p[k]);
-      const double a_sphere = angle(q[(k + 1) % 3] - q[k], q[(k + 2) % 3] - q[k]);
-      const double error = std::abs(a_sphere - a_mesh) * 180. / CGAL_PI;
-      distortion.mean_angle_error_degrees += error;
-      distortion.max_angle_error_degrees = (std::max)(distortion.max_angle_error_degrees, error);
-      ++corners;
-    }
     mesh_areas.push_back(area(p[0], p[1], p[2]));
     sphere_areas.push_back(area(q[0], q[1], q[2]));
     mesh_total += mesh_areas.back();
     sphere_total += sphere_areas.back();
   }
-  if(corners > 0)
-    distortion.mean_angle_error_degrees /= static_cast<double>(corners);
   double sum = 0., sum2 = 0.;
   std::size_t counted = 0;
   for(std::size_t f = 0; f < mesh_areas.size(); ++f)

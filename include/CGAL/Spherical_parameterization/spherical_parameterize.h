@@ -131,7 +131,9 @@ using Sparse_LU_disk_solver_traits = internal::Sparse_LU_solver_traits;
 ///   \cgalParamNBegin{least_distortion}
 ///     \cgalParamDescription{where the map of the weights given ends unbalanced or not bijective (cotangent;
 ///                           mean value always, whose least-squares map is not balanced: its iterations are
-///                           skipped): return the bijective map of least conformal distortion instead (a
+///                           skipped), or balanced with its triangles squeezed (conformal distortion above 1.1,
+///                           `Result::replaced_balanced_map_distortion`): return the bijective map of least
+///                           conformal distortion instead (a
 ///                           stationary minimum of the flat triangles' conformal distortion over bijective maps),
 ///                           `Result::least_distortion_map` says so (`Result::balanced_map_folded`: the
 ///                           weights' balanced map reached was folded, the other ways to one were skipped);
