@@ -168,8 +168,9 @@ CGAL_SPHERICAL_PARAMETERIZATION_NAMED_PARAMETER(hold_weights)
 /// the map of the weights given ends unbalanced or not bijective (cotangent weights whose balanced map folds or is
 /// not found; mean-value weights always, which have no balanced map in general: their least-squares iterations are
 /// skipped), or balanced and certified but with triangles that do not keep their shape (conformal distortion above
-/// 1.1, `Result::replaced_balanced_map_distortion`), return instead the bijective map of least conformal distortion: a minimum, over bijective maps, of the
-/// conformal distortion of the flat triangles through the sphere points against the 3D triangles, started from the
+/// 1.1, `Result::replaced_balanced_map_distortion`), return instead the bijective map of least conformal
+/// distortion: a minimum, over bijective maps, of the conformal distortion of the flat triangles through the sphere
+/// points against the 3D triangles, started from the
 /// map reached or, of less distortion, a map minimized on coarser levels first (meshes of 4,000 vertices or more) or
 /// Tutte's map. With weights other than Tutte's and without `hold_weights`, this minimization replaces the slow ways
 /// to their balanced map: the retry of a failed multilevel start, the two-disk path after it, the cautious Newton.
