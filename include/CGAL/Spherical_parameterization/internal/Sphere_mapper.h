@@ -1040,13 +1040,16 @@ private:
     // F and the angle error disagree on faces large against the sphere (F's area is measured by the sphere's
     // orientation, a little more than the flat triangle's): the cube's balanced map, inscribed, has no angle error
     // but F = 1.11, its least-distortion map 4.5 degrees (F 1.09). A balanced map is replaced only by a map of less
-    // angle error.
+    // angle error, and only by a stationary one: the balanced map is converged (OK), a minimization stopped short of
+    // stationary (the budget, no step lowering F) would end NOT_CONVERGED.
     if(balanced_distortion >= 0. && report.started
-       && !(angle_error(m_mesh.points, m_system.triangles, y).mean_degrees
-            < angle_error(m_mesh.points, m_system.triangles, x).mean_degrees))
+       && (!report.stationary
+           || !(angle_error(m_mesh.points, m_system.triangles, y).mean_degrees
+                < angle_error(m_mesh.points, m_system.triangles, x).mean_degrees)))
     {
       if(m_options.verbose)
-        std::cerr << "least distortion: its map has no less angle error than the balanced map, which stays\n";
+        std::cerr << "least distortion: its map is not stationary or has no less angle error than the balanced map, "
+                     "which stays\n";
       return;
     }
     take_least_distortion_map(x, y, report, reached);
