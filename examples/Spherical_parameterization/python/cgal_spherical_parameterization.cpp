@@ -376,7 +376,9 @@ PYBIND11_MODULE(cgal_spherical_parameterization, m)
       "balanced; their iterations are skipped), the bijective map of least conformal distortion instead\n"
       "(info['least_distortion_map']; info['balanced_map_folded']: the weights' balanced map reached was folded,\n"
       "and the other ways to one were skipped; info['least_distortion_from_balanced_map']: the minimization\n"
-      "started from that map, its folds repaired); False: the weights' own map only.");
+      "started from that map, its folds repaired; info['replaced_balanced_map_distortion']: the distortion, above\n"
+      "1.1, of a balanced map of the weights that did not keep the triangles' shapes and was replaced, else None);\n"
+      "False: the weights' own map only.");
   m.def("certify", &certify, py::arg("X"), py::arg("F"),
         "Certifies a map onto the sphere with exact predicates: dict(bijective, flipped_faces, total_signed_area, "
         "faces).");
