@@ -910,8 +910,11 @@ private:
        && (m_system.symmetric || summarize_imbalance(m_system, x, m_options.iterations.tolerance).balanced()))
     {
       balanced_distortion = conformal_distortion(m_system.triangles, m_mesh.points, x);
+      // F is infinite also where a 3D triangle has no shape (zero area: the minimization cannot run on the mesh).
+      std::vector<least_distortion_detail::Face_shape> shapes;
       if(m_options.hold_weights || has_tutte_weights(m_system)
-         || !(balanced_distortion > m_options.iterations.tuning.balanced_map_max_distortion))
+         || !(balanced_distortion > m_options.iterations.tuning.balanced_map_max_distortion)
+         || !least_distortion_detail::face_shapes(m_system.triangles, m_mesh.points, shapes))
         return;
       if(m_options.verbose)
         std::cerr << "least distortion: the balanced map reached has distortion " << balanced_distortion
