@@ -104,7 +104,8 @@ struct Result
   /// With the named parameter `least_distortion` (the default for cotangent and mean-value weights): the map returned
   /// is the bijective map of least conformal distortion (not a balanced map of the weights given, whose figures
   /// `max_imbalance` and the others still report), because those weights' map ended unbalanced or not bijective
-  /// (their slow ways, among them the cautious Newton, are then left out, unless `hold_weights` was given too). Then
+  /// (their slow ways, among them the cautious Newton, are then left out, unless `hold_weights` was given too), or
+  /// balanced with its triangles squeezed (`replaced_balanced_map_distortion`). Then
   /// the convergence test is the stationarity of that minimum: `max_distortion_stationarity` at most the tolerance
   /// (or its rounding floor) at every vertex.
   bool least_distortion_map = false;
