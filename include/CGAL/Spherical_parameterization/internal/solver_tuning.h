@@ -142,8 +142,8 @@ struct Solver_tuning
   // 44 meshes of the 66 where cotangent weights reach a bijective balanced map, 31 measured 1.00003 to 1.089; the
   // least-distortion maps of meshes of 1,000 faces or more at most 1.085 (cactus). Above: CGAL's dragknob (6.5e10:
   // 59.9 degrees of angle error where its minimum has 3.0), oblong (6.6e5), horizons-domain (1.6e6), tripod (21),
-  // cross (1.9), cactus and quint_tris (a face not positive in F's orientation); the cubes (1.11) and star (1.49),
-  // whose minima have no less angle error, keep their balanced maps.
+  // cross (1.9), quint_tris (1.34), cactus (1.11); the cubes (1.11) and star (1.49), whose minima have no less angle
+  // error, keep their balanced maps.
   double balanced_map_max_distortion = 1.1;
   // With a time budget, the ways to the balanced map of weights other than Tutte's get this share of it when the
   // minimization follows them; the minimization gets the rest (the large meshes' attempts took the whole 60 s before:
