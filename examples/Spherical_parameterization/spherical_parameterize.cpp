@@ -122,9 +122,10 @@ void print_usage(std::ostream& out)
          "      --least-distortion  (default with cotangent and mean_value weights, unless\n"
          "                        --admissible-weights) where the map of the weights given ends unbalanced or\n"
          "                        not bijective (cotangent; mean_value always: its least-squares map is not\n"
-         "                        balanced, and its iterations are skipped), or balanced but with triangles\n"
-         "                        squeezed (conformal distortion above 1.1): return the bijective map of least\n"
-         "                        conformal distortion instead, success when that minimum is stationary; it\n"
+         "                        balanced, and its iterations are skipped): return the bijective map of least\n"
+         "                        conformal distortion instead, success when that minimum is stationary; a\n"
+         "                        balanced map is followed by it too, and replaced where it has less angle\n"
+         "                        error (--no-least-distortion for the balanced map of the weights); it\n"
          "                        replaces cotangent weights' slow ways to their balanced map (a retry of the\n"
          "                        levels, the two disks, the cautious Newton) unless --hold-weights is given\n"
          "                        too (not with --criterion paper)\n"
@@ -183,9 +184,10 @@ void print_usage(std::ostream& out)
          "  map of least conformal distortion; the other four null when it is not), balanced_map_folded\n"
          "  (--least-distortion: the weights' balanced map reached was folded, the minimization followed at once),\n"
          "  least_distortion_from_balanced_map (the minimization started from that folded map, repaired, not from\n"
-         "  its own coarser levels), replaced_balanced_map_distortion (the distortion, above 1.1, of a balanced and\n"
-         "  certified map of the weights given that the least-distortion map replaced; null otherwise, and null\n"
-         "  when infinite: a face of that map without area in double precision),\n"
+         "  its own coarser levels), replaced_balanced_map_distortion and replaced_balanced_map_angle_error (the\n"
+         "  distortion and mean angle error of a balanced and certified map of the weights given that the\n"
+         "  least-distortion map, of less angle error, replaced; null otherwise, and the distortion null when\n"
+         "  infinite: a face of that map without area in double precision),\n"
          "  max_stationarity and unstationary_vertices (non-symmetric weights, else null), residual (Res),\n"
          "  max_tangential_residual, flipped_faces, total_signed_area, bijective,\n"
          "  distortion.{mean_angle_error_degrees,max_angle_error_degrees,log_area_ratio_stddev} (each corner's\n"
@@ -571,6 +573,8 @@ void print_json(std::ostream& out, const SP::Result& r, const Run_figures& run)
       {"least_distortion_from_balanced_map", boolean(r.least_distortion_from_balanced_map)},
       {"replaced_balanced_map_distortion",
        json_number(r.replaced_balanced_map_distortion, computed && r.replaced_balanced_map_distortion >= 0.)},
+      {"replaced_balanced_map_angle_error",
+       json_number(r.replaced_balanced_map_angle_error, computed && r.replaced_balanced_map_angle_error >= 0.)},
       {"distortion_energy", json_number(r.distortion_energy, computed && r.least_distortion_map)},
       {"max_distortion_stationarity", json_number(r.max_distortion_stationarity, computed && r.least_distortion_map)},
       {"least_distortion_steps", json_count(r.least_distortion_steps, computed && r.least_distortion_map)},
@@ -657,8 +661,9 @@ void print_text(std::ostream& out, const SP::Result& r, const Run_figures& run)
         << (r.balanced_map_folded ? "; the balanced map of the weights given that Newton's steps reached is folded" : "")
         << (r.least_distortion_from_balanced_map ? " (the minimization started from it, its folds repaired)" : "")
         << (r.replaced_balanced_map_distortion >= 0.
-                ? "; the balanced map of the weights given that was reached has distortion "
-                      + std::to_string(r.replaced_balanced_map_distortion) + ": its triangles did not keep their shape"
+                ? "; it replaced the balanced map of the weights given that was reached, of distortion "
+                      + std::to_string(r.replaced_balanced_map_distortion) + " and mean angle error "
+                      + std::to_string(r.replaced_balanced_map_angle_error) + " degrees"
                 : std::string())
         << "\n";
   if(r.held_weight_vertices > 0)

@@ -38,7 +38,7 @@ check(info["max_imbalance"] <= 1e-6 and set(info["stages"]) == {"initial_guess",
 # What does not apply is None, as the JSON's null: stationarity (symmetric weights), the least-distortion figures.
 check(all(info[k] is None for k in ("max_stationarity", "unstationary_vertices", "distortion_energy", "max_distortion_stationarity",
                                     "least_distortion_steps", "distortion_vertices_at_rounding_floor"))
-      and info["least_distortion_map"] is False and info["balanced_map_folded"] is False and info["least_distortion_from_balanced_map"] is False and info["replaced_balanced_map_distortion"] is None, "figures that do not apply: %s" % {k: info[k] for k in info if "distortion" in k or "stationar" in k})
+      and info["least_distortion_map"] is False and info["balanced_map_folded"] is False and info["least_distortion_from_balanced_map"] is False and info["replaced_balanced_map_distortion"] is None and info["replaced_balanced_map_angle_error"] is None, "figures that do not apply: %s" % {k: info[k] for k in info if "distortion" in k or "stationar" in k})
 certificate = sp.certify(X, F)
 check(certificate["bijective"] and certificate["flipped_faces"] == 0 and abs(certificate["total_signed_area"] - 4 * np.pi) < 1e-9,
       "certify: %s" % certificate)

@@ -136,6 +136,7 @@ py::dict result_dict(const SP::Result& r, const std::string& weights, const std:
   d["balanced_map_folded"] = r.balanced_map_folded;
   d["least_distortion_from_balanced_map"] = r.least_distortion_from_balanced_map;
   d["replaced_balanced_map_distortion"] = number(r.replaced_balanced_map_distortion);
+  d["replaced_balanced_map_angle_error"] = number(r.replaced_balanced_map_angle_error);
   d["distortion_energy"] = number(r.distortion_energy);
   d["max_distortion_stationarity"] = number(r.max_distortion_stationarity);
   d["least_distortion_steps"] = count_if(r.least_distortion_steps, r.least_distortion_map);
@@ -376,9 +377,10 @@ PYBIND11_MODULE(cgal_spherical_parameterization, m)
       "balanced; their iterations are skipped), the bijective map of least conformal distortion instead\n"
       "(info['least_distortion_map']; info['balanced_map_folded']: the weights' balanced map reached was folded,\n"
       "and the other ways to one were skipped; info['least_distortion_from_balanced_map']: the minimization\n"
-      "started from that map, its folds repaired; info['replaced_balanced_map_distortion']: the distortion, above\n"
-      "1.1, of a balanced map of the weights that did not keep the triangles' shapes and was replaced, else None);\n"
-      "False: the weights' own map only.");
+      "started from that map, its folds repaired); a balanced map of the weights is followed by the minimization\n"
+      "too and replaced where that has less angle error (info['replaced_balanced_map_distortion'] and\n"
+      "info['replaced_balanced_map_angle_error']: the balanced map's figures, else None). False: the weights' own\n"
+      "map only.");
   m.def("certify", &certify, py::arg("X"), py::arg("F"),
         "Certifies a map onto the sphere with exact predicates: dict(bijective, flipped_faces, total_signed_area, "
         "faces).");

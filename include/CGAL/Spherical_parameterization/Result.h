@@ -105,7 +105,7 @@ struct Result
   /// is the bijective map of least conformal distortion (not a balanced map of the weights given, whose figures
   /// `max_imbalance` and the others still report), because those weights' map ended unbalanced or not bijective
   /// (their slow ways, among them the cautious Newton, are then left out, unless `hold_weights` was given too), or
-  /// balanced with its triangles squeezed (`replaced_balanced_map_distortion`). Then
+  /// balanced but with more angle error than the minimum (`replaced_balanced_map_distortion`). Then
   /// the convergence test is the stationarity of that minimum: `max_distortion_stationarity` at most the tolerance
   /// (or its rounding floor) at every vertex.
   bool least_distortion_map = false;
@@ -122,11 +122,14 @@ struct Result
   /// from its own coarser levels (the manual's Method section). False otherwise.
   bool least_distortion_from_balanced_map = false;
   /// When `least_distortion_map` although the map of the weights given was balanced and certified: that map's
-  /// conformal distortion (as `distortion_energy` measures it), above 1.1, which its triangles did not keep their
-  /// shape by (balanced maps of cotangent weights can sit far along the boosts, their faces squeezed: the manual's
-  /// Method section); the minimization followed it and its map, of lower distortion, is the one returned. -1
-  /// otherwise.
+  /// conformal distortion (as `distortion_energy` measures it). With `least_distortion`, a balanced map of
+  /// shape-preserving weights is followed by the minimization and replaced by its map where that is stationary and has
+  /// less mean angle error (`replaced_balanced_map_angle_error`): balanced maps of cotangent weights can sit far along
+  /// the boosts, their faces squeezed (the manual's Method section). -1 otherwise.
   double replaced_balanced_map_distortion = -1.;
+  /// With `replaced_balanced_map_distortion`: the mean angle error of that balanced map, in degrees, as
+  /// `measure_spherical_distortion()` measures it (more than the map returned has). -1 otherwise.
+  double replaced_balanced_map_angle_error = -1.;
   /// The conformal distortion of the map returned when `least_distortion_map`: the mean, weighted by 3D area, of
   /// \f$(\sigma_1^2 + \sigma_2^2) / (2 \sigma_1 \sigma_2)\f$ over the affine maps from each 3D triangle to the flat
   /// triangle through its sphere points, each term measured with the area signed by the sphere's orientation (so a

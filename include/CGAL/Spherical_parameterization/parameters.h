@@ -167,13 +167,16 @@ CGAL_SPHERICAL_PARAMETERIZATION_NAMED_PARAMETER(hold_weights)
 /// `true` (the default with `Weighting::COTANGENT` and `Weighting::MEAN_VALUE`, unless `admissible_weights`): where
 /// the map of the weights given ends unbalanced or not bijective (cotangent weights whose balanced map folds or is
 /// not found; mean-value weights always, which have no balanced map in general: their least-squares iterations are
-/// skipped), or balanced and certified but with triangles that do not keep their shape (conformal distortion above
-/// 1.1, `Result::replaced_balanced_map_distortion`), return instead the bijective map of least conformal
-/// distortion: a minimum, over bijective maps, of the conformal distortion of the flat triangles through the sphere
-/// points against the 3D triangles, started from the
+/// skipped), return instead the bijective map of least conformal distortion: a minimum, over bijective maps, of the
+/// conformal distortion of the flat triangles through the sphere points against the 3D triangles, started from the
 /// map reached or, of less distortion, a map minimized on coarser levels first (meshes of 4,000 vertices or more) or
-/// Tutte's map. With weights other than Tutte's and without `hold_weights`, this minimization replaces the slow ways
-/// to their balanced map: the retry of a failed multilevel start, the two-disk path after it, the cautious Newton.
+/// Tutte's map. Where the map of the weights given is balanced and certified (cotangent weights, the user's), the
+/// minimization follows it too, from it, and its map replaces it where stationary and of less mean angle error
+/// (`Result::replaced_balanced_map_distortion`, `Result::replaced_balanced_map_angle_error`): where along the
+/// Moebius boosts a balanced map sits is fixed only by the discretization, and the one reached can have up to 20
+/// times the angle error of the minimum (the manual's Method section); `false` gives the balanced map. With weights
+/// other than Tutte's and without `hold_weights`, this minimization replaces the slow ways to their balanced map: the
+/// retry of a failed multilevel start, the two-disk path after it, the cautious Newton.
 /// With weights other than Tutte's and `max_seconds`, the ways to the weights' balanced map get half the budget, the
 /// minimization the rest; where Newton's full steps reach a balanced map of those weights that is folded, the other
 /// ways are skipped (`Result::balanced_map_folded`). `Result::least_distortion_map` says so, and the status is

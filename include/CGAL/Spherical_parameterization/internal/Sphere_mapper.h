@@ -898,13 +898,14 @@ private:
     // none, and x stays empty where no map results (map() runs stage 1 then).
     if(m_cancelled || m_iteration_options.convergence_test != Convergence_test::IMBALANCE)
       return;
-    // A balanced map, certified, is the answer where it keeps the shapes of the triangles. Balanced maps of cotangent
-    // weights are saddles of their energy, which falls towards the maps that shrink the sphere to a point, and the
-    // one reached can sit far along the boosts, its faces squeezed: CGAL's dragknob, balanced to 1e-10 and bijective,
-    // had 60 degrees of mean angle error, its least-distortion map 3. Above
-    // Solver_tuning::balanced_map_max_distortion the minimization follows (not with hold_weights, whose map is the one
-    // asked for, nor for Tutte's weights, which do not keep shapes), and its map replaces the balanced one only where
-    // it lowers the distortion (take_least_distortion_map) and the angle error (below).
+    // A balanced map of shape-preserving weights (not Tutte's, which do not keep shapes; not with hold_weights, whose
+    // map is the one asked for), certified, is followed by the minimization too, and replaced by its map where that has
+    // less angle error (replace_balanced_map). Balanced maps of cotangent weights are saddles of their energy, which
+    // falls towards the maps that shrink the sphere to a point, and where along the three boosts the one reached sits
+    // is fixed only by the discretization: CGAL's dragknob, balanced to 1e-10 and bijective, had 60 degrees of mean
+    // angle error, its least-distortion map 3; c3d_igea 0.306 against 0.205, oded_springer 1.78 against 1.40 (the
+    // boosts alone gave 0.206 and 1.41). Where the balanced map is the better one (the inscribed cubes, 0 degrees
+    // against 4.5; star, cube-meshed, ellipsoid, sphere966, oded_wingnut), it stays.
     double balanced_distortion = -1.;
     if(!x.empty() && !m_no_balanced_solution && converged_and_bijective(x)
        && (m_system.symmetric || summarize_imbalance(m_system, x, m_options.iterations.tolerance).balanced()))
@@ -913,12 +914,10 @@ private:
       // F is infinite also where a 3D triangle has no shape (zero area: the minimization cannot run on the mesh).
       std::vector<least_distortion_detail::Face_shape> shapes;
       if(m_options.hold_weights || has_tutte_weights(m_system)
-         || !(balanced_distortion > m_options.iterations.tuning.balanced_map_max_distortion)
          || !least_distortion_detail::face_shapes(m_system.triangles, m_mesh.points, shapes))
         return;
       if(m_options.verbose)
         std::cerr << "least distortion: the balanced map reached has distortion " << balanced_distortion
-                  << ", above " << m_options.iterations.tuning.balanced_map_max_distortion
                   << ": the minimization follows\n";
     }
     Iteration_options options = m_options.iterations;
@@ -931,6 +930,24 @@ private:
     CGAL::Real_timer clock;
     clock.start();
     options.max_newton_sweeps = std::min(options.max_newton_sweeps, options.tuning.least_distortion_max_steps);
+    // A balanced map whose triangles keep their shape is the start: close to the minimum but along the boosts,
+    // which the minimization balances first (bunny00 with cotangent weights: 3 boosts and 5 Newton steps, 0.9 s). One
+    // squeezed beyond Solver_tuning::least_distortion_start_max_energy starts as an unbalanced map does.
+    if(balanced_distortion >= 0. && balanced_distortion <= options.tuning.least_distortion_start_max_energy)
+    {
+      std::vector<Vector3> y = x;
+      const Least_distortion_report report =
+          minimize_conformal_distortion(m_system.triangles, m_mesh.points, y, options, clock);
+      m_cancelled = m_cancelled || report.cancelled;
+      if(m_options.verbose)
+        std::cerr << "least distortion: from the balanced map, " << report.newton_steps << " Newton steps, "
+                  << report.boosts << " boosts, distortion " << report.energy << ", max stationarity "
+                  << report.max_stationarity << (report.stationary ? " (stationary)" : "") << ", " << clock.time()
+                  << " s\n";
+      m_result.newton.seconds += clock.time();
+      replace_balanced_map(x, y, report, balanced_distortion);
+      return;
+    }
     // The start of lower distortion: the map reached, or the multilevel start (multilevel_least_distortion.h), or on
     // meshes too small for it Tutte's map (the maps where cotangent weights end often squeeze faces to the limits of
     // double precision, which a minimization of their shape cannot undo: CGAL's man ended at distortion 12,000 from
@@ -941,7 +958,7 @@ private:
     // close to conformal but at its folds, it is a better start than the levels below give, which are then not
     // computed (bigbrain with cotangent weights: distortion 1.00166 against 1.0083, 7 s of levels saved). Only where
     // the repair leaves every face positive and the distortion is at most
-    // Solver_tuning::least_distortion_repaired_start_max_energy (where cotangent weights squeeze thin parts to the
+    // Solver_tuning::least_distortion_start_max_energy (where cotangent weights squeeze thin parts to the
     // limits of double precision, the minimization cannot recover from their map: see the levels below); and where the
     // minimization from it ends short of stationary, or its map is not taken (take_least_distortion_map), with time
     // left, the levels' start is tried after all (with the time left: the budget counts from `clock`'s start).
@@ -961,7 +978,7 @@ private:
                                          : 0;
       const double start_energy = repair.repaired ? conformal_distortion(m_system.triangles, m_mesh.points, repaired)
                                                   : std::numeric_limits<double>::infinity();
-      const bool start_taken = start_energy <= options.tuning.least_distortion_repaired_start_max_energy;
+      const bool start_taken = start_energy <= options.tuning.least_distortion_start_max_energy;
       if(m_options.verbose)
         std::cerr << "least distortion: the folded balanced map, " << repair.folded_faces << " non-positive faces, "
                   << (repair.repaired ? "repaired" : "not repaired") << " by moving " << repair.moved_vertices
@@ -1040,24 +1057,39 @@ private:
                 << ", max stationarity " << report.max_stationarity
                 << (report.stationary ? " (stationary)" : "") << ", " << clock.time() << " s\n";
     m_result.newton.seconds += clock.time();
-    // F and the angle error disagree on faces large against the sphere (F's area is measured by the sphere's
-    // orientation, a little more than the flat triangle's): the cube's balanced map, inscribed, has no angle error
-    // but F = 1.11, its least-distortion map 4.5 degrees (F 1.09). A balanced map is replaced only by a map of less
-    // angle error, and only by a stationary one: the balanced map is converged (OK), a minimization stopped short of
-    // stationary (the budget, no step lowering F) would end NOT_CONVERGED.
-    if(balanced_distortion >= 0. && report.started
-       && (!report.stationary
-           || !(angle_error(m_mesh.points, m_system.triangles, y).mean_degrees
-                < angle_error(m_mesh.points, m_system.triangles, x).mean_degrees)))
+    if(balanced_distortion >= 0.)
+      replace_balanced_map(x, y, report, balanced_distortion);
+    else
+      take_least_distortion_map(x, y, report, reached);
+  }
+
+  // The minimization's map y, followed from the balanced map x, replaces it only where stationary (a minimization
+  // stopped short of it, by the budget or for want of a step lowering F, would turn a converged map into
+  // NOT_CONVERGED) and of less angle error: F and the angle error disagree on faces large against the sphere (F's area
+  // is measured by the sphere's orientation, a little more than the flat triangle's): the cube's balanced map,
+  // inscribed, has no angle error but F = 1.11, its least-distortion map 4.5 degrees (F 1.09).
+  void replace_balanced_map(std::vector<Vector3>& x, std::vector<Vector3>& y, const Least_distortion_report& report,
+                            double balanced_distortion)
+  {
+    if(!report.started || !report.stationary)
     {
-      if(m_options.verbose)
-        std::cerr << "least distortion: its map is not stationary or has no less angle error than the balanced map, "
-                     "which stays\n";
+      if(m_options.verbose && report.started)
+        std::cerr << "least distortion: its map is not stationary, the balanced map stays\n";
       return;
     }
-    take_least_distortion_map(x, y, report, reached);
-    if(m_result.least_distortion_map && balanced_distortion >= 0.)
+    const double balanced_angle_error = angle_error(m_mesh.points, m_system.triangles, x).mean_degrees;
+    if(!(angle_error(m_mesh.points, m_system.triangles, y).mean_degrees < balanced_angle_error))
+    {
+      if(m_options.verbose)
+        std::cerr << "least distortion: its map has no less angle error than the balanced map, which stays\n";
+      return;
+    }
+    take_least_distortion_map(x, y, report, balanced_distortion);
+    if(m_result.least_distortion_map)
+    {
       m_result.replaced_balanced_map_distortion = balanced_distortion;
+      m_result.replaced_balanced_map_angle_error = balanced_angle_error;
+    }
   }
 
   // The minimization's map y replaces x where it ran (a step taken, or a start found stationary), lowered the distortion
@@ -1150,8 +1182,8 @@ private:
            << ", max stationarity " << m_result.max_distortion_stationarity << " after "
            << m_result.least_distortion_steps << " Newton steps, " << m_result.flipped_faces << " flipped faces";
       if(m_result.replaced_balanced_map_distortion >= 0.)
-        note << "; the balanced map reached, of distortion " << m_result.replaced_balanced_map_distortion
-             << ", did not keep the triangles' shapes";
+        note << "; it replaced the balanced map reached, of distortion " << m_result.replaced_balanced_map_distortion
+             << " and mean angle error " << m_result.replaced_balanced_map_angle_error << " degrees";
       note << "]";
       m_result.message += note.str();
     }

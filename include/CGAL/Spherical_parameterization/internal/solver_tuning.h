@@ -132,19 +132,13 @@ struct Solver_tuning
   double least_distortion_coarse_tolerance = 1e-4;
   double least_distortion_smoothing_stall = 0.7;
   int least_distortion_max_smoothing_sweeps = 100;
-  // Its start from a folded balanced map (fold_repair.h): at most this many rounds of moves around the folds, and
-  // taken where its distortion is at most this (the levels' starts measured 1.003 to 1.017, the repaired balanced maps
-  // 1.002 to 1.013; maps whose thin parts are squeezed to the limits of double precision are far above).
+  // Its start from a folded balanced map (fold_repair.h): at most this many rounds of moves around the folds. That
+  // map repaired, or a balanced map, is the start where its distortion is at most this (the levels' starts measured
+  // 1.003 to 1.017, the repaired balanced maps 1.002 to 1.013, the cotangent balanced maps of 59 of the 66 meshes
+  // 1.00003 to 1.089; maps whose thin parts are squeezed to the limits of double precision are far above: CGAL's
+  // dragknob 6.5e10, oblong 6.6e5, which start as unbalanced maps do).
   int fold_repair_max_rounds = 10;
-  double least_distortion_repaired_start_max_energy = 1.1;
-  // A balanced map of shape-preserving weights whose distortion is above this does not keep the shapes of its
-  // triangles: the minimization follows it as it follows an unbalanced one (Sphere_mapper::least_distortion()). Of the
-  // 44 meshes of the 66 where cotangent weights reach a bijective balanced map, 31 measured 1.00003 to 1.089; the
-  // least-distortion maps of meshes of 1,000 faces or more at most 1.085 (cactus). Above: CGAL's dragknob (6.5e10:
-  // 59.9 degrees of angle error where its minimum has 3.0), oblong (6.6e5), horizons-domain (1.6e6), tripod (21),
-  // cross (1.9), quint_tris (1.34), cactus (1.11); the cubes (1.11) and star (1.49), whose minima have no less angle
-  // error, keep their balanced maps.
-  double balanced_map_max_distortion = 1.1;
+  double least_distortion_start_max_energy = 1.1;
   // With a time budget, the ways to the balanced map of weights other than Tutte's get this share of it when the
   // minimization follows them; the minimization gets the rest (the large meshes' attempts took the whole 60 s before:
   // CGAL's horse and Oded's scorpion never reached the minimization).
