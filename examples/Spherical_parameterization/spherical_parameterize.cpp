@@ -183,11 +183,12 @@ void print_usage(std::ostream& out)
          "  distortion_vertices_at_rounding_floor (--least-distortion: whether the map returned is the bijective\n"
          "  map of least conformal distortion; the other four null when it is not), balanced_map_folded\n"
          "  (--least-distortion: the weights' balanced map reached was folded, the minimization followed at once),\n"
-         "  least_distortion_from_balanced_map (the minimization started from that folded map, repaired, not from\n"
-         "  its own coarser levels), replaced_balanced_map_distortion and replaced_balanced_map_angle_error (the\n"
-         "  distortion and mean angle error of a balanced and certified map of the weights given that the\n"
-         "  least-distortion map, of less angle error, replaced; null otherwise, and the distortion null when\n"
-         "  infinite: a face of that map without area in double precision),\n"
+         "  least_distortion_from_balanced_map (the minimization started from the weights' balanced map, repaired\n"
+         "  where folded, not from its own coarser levels), replaced_balanced_map_distortion and\n"
+         "  replaced_balanced_map_angle_error (the distortion and mean angle error of a balanced and certified\n"
+         "  map of the weights given that the least-distortion map, of less angle error, replaced; null\n"
+         "  otherwise, and the distortion null when infinite: a face of that map without area in double\n"
+         "  precision),\n"
          "  max_stationarity and unstationary_vertices (non-symmetric weights, else null), residual (Res),\n"
          "  max_tangential_residual, flipped_faces, total_signed_area, bijective,\n"
          "  distortion.{mean_angle_error_degrees,max_angle_error_degrees,log_area_ratio_stddev} (each corner's\n"
@@ -659,11 +660,14 @@ void print_text(std::ostream& out, const SP::Result& r, const Run_figures& run)
         << " after " << r.least_distortion_steps << " Newton steps ("
         << r.distortion_vertices_at_rounding_floor << " vertices held to their rounding floor)"
         << (r.balanced_map_folded ? "; the balanced map of the weights given that Newton's steps reached is folded" : "")
-        << (r.least_distortion_from_balanced_map ? " (the minimization started from it, its folds repaired)" : "")
+        << (r.balanced_map_folded && r.least_distortion_from_balanced_map
+                ? " (the minimization started from it, its folds repaired)"
+                : "")
         << (r.replaced_balanced_map_distortion >= 0.
                 ? "; it replaced the balanced map of the weights given that was reached, of distortion "
                       + std::to_string(r.replaced_balanced_map_distortion) + " and mean angle error "
                       + std::to_string(r.replaced_balanced_map_angle_error) + " degrees"
+                      + (r.least_distortion_from_balanced_map ? ", from which the minimization started" : "")
                 : std::string())
         << "\n";
   if(r.held_weight_vertices > 0)
@@ -1166,13 +1170,17 @@ SP::IO::File_read read_input(const std::string& path, std::vector<Point>& points
 // by" line of a FreeSurfer surface, a metadata entry of a GIfTI file. A cohort re-run after a killed job then redoes
 // only what is missing or unfinished (a stopped run writes its best map with a status other than OK).
 const std::string stamp_tag = "spherical_parameterize/1";
+constexpr int least_distortion_version = 2;
 
 struct Run_stamp
 {
   std::string status, weights, criterion, precision, input;
   bool admissible = false;
   bool hold = false; // --hold-weights (absent from the stamps written before it: no)
-  bool least_distortion = false; // --least-distortion (likewise)
+  // --least-distortion: 0 off (absent), else the version of its rule that made the map: 1, written "yes", before
+  // 2026-12-05, when balanced cotangent maps below distortion 1.1 were kept; 2 since, when the minimization follows
+  // every balanced map (outputs of version 1 are mapped again).
+  int least_distortion = 0;
   double tolerance = 0., radius = 1.;
 };
 
@@ -1225,7 +1233,7 @@ std::string format_stamp(const Run_stamp& stamp)
   std::ostringstream line;
   line << stamp_tag << " status=" << stamp.status << " weights=" << stamp.weights
        << " admissible=" << (stamp.admissible ? "yes" : "no") << " hold=" << (stamp.hold ? "yes" : "no")
-       << (stamp.least_distortion ? " least_distortion=yes" : "")
+       << (stamp.least_distortion > 0 ? " least_distortion=" + std::to_string(stamp.least_distortion) : std::string())
        << " criterion=" << stamp.criterion
        << " tolerance=" << round_trip(stamp.tolerance) << " precision=" << stamp.precision
        << " radius=" << round_trip(stamp.radius) << " input=" << stamp.input;
@@ -1262,7 +1270,7 @@ bool parse_stamp(const std::string& text, Run_stamp& stamp)
       stamp.admissible = value == "yes";
     else if(key == "least_distortion")
     {
-      stamp.least_distortion = value == "yes";
+      stamp.least_distortion = value == "yes" ? 1 : std::atoi(value.c_str());
       continue; // optional: written only when asked
     }
     else if(key == "hold")
@@ -1349,7 +1357,7 @@ std::string reason_not_to_keep(const std::string& output, const Mesh& mesh,
     return "the run that wrote it ended with " + stamp.status;
   const std::string format = output_format(output);
   if(stamp.weights != settings.weights_name || stamp.admissible != settings.admissible || stamp.hold != settings.hold
-     || stamp.least_distortion != settings.least_distortion
+     || stamp.least_distortion != (settings.least_distortion ? least_distortion_version : 0)
      || stamp.criterion != settings.criterion || !(stamp.tolerance <= settings.tolerance)
      || stamp.radius != settings.radius || stamp.precision != output_precision(format, settings))
     return "it was made with other settings (" + stamp_line.substr(stamp_line.find(stamp_tag) + stamp_tag.size() + 1)
@@ -1647,7 +1655,7 @@ int main(int argc, char** argv)
     stamp.weights = settings.weights_name;
     stamp.admissible = settings.admissible;
     stamp.hold = settings.hold;
-    stamp.least_distortion = settings.least_distortion;
+    stamp.least_distortion = settings.least_distortion ? least_distortion_version : 0;
     stamp.criterion = settings.criterion;
     stamp.tolerance = settings.tolerance;
     stamp.precision = output_precision(output_format(output), settings);

@@ -31,6 +31,7 @@
 #include <pybind11/stl.h>
 
 #include <chrono>
+#include <cmath>
 #include <fstream>
 #include <string>
 #include <vector>
@@ -110,7 +111,10 @@ py::dict stage_dict(const SP::Stage_statistics& s)
 py::dict result_dict(const SP::Result& r, const std::string& weights, const std::string& criterion, double tolerance)
 {
   py::dict d;
-  auto number = [](double x) { return x >= 0. ? py::object(py::float_(x)) : py::object(py::none()); };
+  // None where the JSON has null: not computed (negative), or infinite (JSON has no infinity).
+  auto number = [](double x) {
+    return x >= 0. && std::isfinite(x) ? py::object(py::float_(x)) : py::object(py::none());
+  };
   d["status"] = SP::get_error_name(r.status);
   d["success"] = r.status == SP::Error_code::OK;
   d["message"] = r.message;
@@ -376,10 +380,11 @@ PYBIND11_MODULE(cgal_spherical_parameterization, m)
       "the weights' map ends unconverged, and always for mean-value weights (whose least-squares map is not\n"
       "balanced; their iterations are skipped), the bijective map of least conformal distortion instead\n"
       "(info['least_distortion_map']; info['balanced_map_folded']: the weights' balanced map reached was folded,\n"
-      "and the other ways to one were skipped; info['least_distortion_from_balanced_map']: the minimization\n"
-      "started from that map, its folds repaired); a balanced map of the weights is followed by the minimization\n"
-      "too and replaced where that has less angle error (info['replaced_balanced_map_distortion'] and\n"
-      "info['replaced_balanced_map_angle_error']: the balanced map's figures, else None). False: the weights' own\n"
+      "and the other ways to one were skipped); a balanced map of the weights is followed by the minimization too\n"
+      "and replaced where that has less angle error (info['replaced_balanced_map_distortion'] and\n"
+      "info['replaced_balanced_map_angle_error']: the balanced map's figures, else None);\n"
+      "info['least_distortion_from_balanced_map']: the minimization started from the weights' balanced map\n"
+      "(repaired where folded). False: the weights' own\n"
       "map only.");
   m.def("certify", &certify, py::arg("X"), py::arg("F"),
         "Certifies a map onto the sphere with exact predicates: dict(bijective, flipped_faces, total_signed_area, "

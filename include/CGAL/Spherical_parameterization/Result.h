@@ -117,9 +117,11 @@ struct Result
   /// other ways rarely find another one, and take most of the time). It can be true while `least_distortion_map` is
   /// false (the minimization was cancelled, ran out of time, or did not lower the distortion). False otherwise.
   bool balanced_map_folded = false;
-  /// When `least_distortion_map` and `balanced_map_folded`: the minimization started from that folded balanced map,
-  /// its folds repaired (the vertices of its non-positive faces moved into their rings' kernels, then smoothed), not
-  /// from its own coarser levels (the manual's Method section). False otherwise.
+  /// When `least_distortion_map`: the minimization started from the balanced map of the weights given, not from its
+  /// own coarser levels (the manual's Method section): with `balanced_map_folded`, from that folded map, its folds
+  /// repaired (the vertices of its non-positive faces moved into their rings' kernels, then smoothed); with
+  /// `replaced_balanced_map_distortion`, from that balanced map (where its distortion is at most 1.1). False
+  /// otherwise.
   bool least_distortion_from_balanced_map = false;
   /// When `least_distortion_map` although the map of the weights given was balanced and certified: that map's
   /// conformal distortion (as `distortion_energy` measures it). With `least_distortion`, a balanced map of

@@ -96,8 +96,9 @@ enum least_distortion_t
 
 /// \ingroup PkgSphericalParameterizationRef
 /// The default of the named parameter `least_distortion`: on for the shape-preserving weights (cotangent, mean value),
-/// whose balanced map may fold or not exist; off for Tutte's weights, the user's, and weights made admissible, whose
-/// balanced map is what was asked for. The command line and the Python module resolve their default with it.
+/// whose balanced map may fold, not exist, or keep the shapes less well than the minimum; off for Tutte's weights, the
+/// user's, and weights made admissible, whose balanced map is what was asked for. The command line and the Python
+/// module resolve their default with it.
 inline bool least_distortion_by_default(Weighting weighting, bool admissible_weights)
 {
   return !admissible_weights && (weighting == Weighting::COTANGENT || weighting == Weighting::MEAN_VALUE);
@@ -171,7 +172,8 @@ CGAL_SPHERICAL_PARAMETERIZATION_NAMED_PARAMETER(hold_weights)
 /// conformal distortion of the flat triangles through the sphere points against the 3D triangles, started from the
 /// map reached or, of less distortion, a map minimized on coarser levels first (meshes of 4,000 vertices or more) or
 /// Tutte's map. Where the map of the weights given is balanced and certified (cotangent weights, the user's), the
-/// minimization follows it too, from it, and its map replaces it where stationary and of less mean angle error
+/// minimization follows it too (started from it where its distortion is at most 1.1), and its map replaces it where
+/// stationary and of less mean angle error
 /// (`Result::replaced_balanced_map_distortion`, `Result::replaced_balanced_map_angle_error`): where along the
 /// Moebius boosts a balanced map sits is fixed only by the discretization, and the one reached can have up to 20
 /// times the angle error of the minimum (the manual's Method section); `false` gives the balanced map. With weights

@@ -131,10 +131,11 @@ using Sparse_LU_disk_solver_traits = internal::Sparse_LU_solver_traits;
 ///   \cgalParamNBegin{least_distortion}
 ///     \cgalParamDescription{where the map of the weights given ends unbalanced or not bijective (cotangent;
 ///                           mean value always, whose least-squares map is not balanced: its iterations are
-///                           skipped), or balanced with its triangles squeezed (conformal distortion above 1.1,
-///                           `Result::replaced_balanced_map_distortion`): return the bijective map of least
-///                           conformal distortion instead (a
-///                           stationary minimum of the flat triangles' conformal distortion over bijective maps),
+///                           skipped): return the bijective map of least conformal distortion instead (a
+///                           stationary minimum of the flat triangles' conformal distortion over bijective maps);
+///                           a balanced map of cotangent weights is followed by the minimization too and replaced
+///                           where its map has less mean angle error (`Result::replaced_balanced_map_distortion`,
+///                           `Result::replaced_balanced_map_angle_error`);
 ///                           `Result::least_distortion_map` says so (`Result::balanced_map_folded`: the
 ///                           weights' balanced map reached was folded, the other ways to one were skipped);
 ///                           `false`: the weights' own map only}

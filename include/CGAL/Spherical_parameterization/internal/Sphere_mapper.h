@@ -946,6 +946,7 @@ private:
                   << " s\n";
       m_result.newton.seconds += clock.time();
       replace_balanced_map(x, y, report, balanced_distortion);
+      m_result.least_distortion_from_balanced_map = m_result.least_distortion_map;
       return;
     }
     // The start of lower distortion: the map reached, or the multilevel start (multilevel_least_distortion.h), or on

@@ -134,9 +134,9 @@ struct Solver_tuning
   int least_distortion_max_smoothing_sweeps = 100;
   // Its start from a folded balanced map (fold_repair.h): at most this many rounds of moves around the folds. That
   // map repaired, or a balanced map, is the start where its distortion is at most this (the levels' starts measured
-  // 1.003 to 1.017, the repaired balanced maps 1.002 to 1.013, the cotangent balanced maps of 59 of the 66 meshes
-  // 1.00003 to 1.089; maps whose thin parts are squeezed to the limits of double precision are far above: CGAL's
-  // dragknob 6.5e10, oblong 6.6e5, which start as unbalanced maps do).
+  // 1.003 to 1.017, the repaired balanced maps 1.002 to 1.013, 31 of the 44 bijective balanced cotangent maps of the
+  // 66 meshes 1.00003 to 1.089; maps whose thin parts are squeezed to the limits of double precision are far above:
+  // CGAL's dragknob 6.5e10, oblong 6.6e5, which start as unbalanced maps do; the inscribed cubes 1.11, star 1.49).
   int fold_repair_max_rounds = 10;
   double least_distortion_start_max_energy = 1.1;
   // With a time budget, the ways to the balanced map of weights other than Tutte's get this share of it when the
