@@ -384,8 +384,7 @@ PYBIND11_MODULE(cgal_spherical_parameterization, m)
       "and replaced where that has less angle error (info['replaced_balanced_map_distortion'] and\n"
       "info['replaced_balanced_map_angle_error']: the balanced map's figures, else None);\n"
       "info['least_distortion_from_balanced_map']: the minimization started from the weights' balanced map\n"
-      "(repaired where folded). False: the weights' own\n"
-      "map only.");
+      "(repaired where folded). False: the weights' own map only.");
   m.def("certify", &certify, py::arg("X"), py::arg("F"),
         "Certifies a map onto the sphere with exact predicates: dict(bijective, flipped_faces, total_signed_area, "
         "faces).");
