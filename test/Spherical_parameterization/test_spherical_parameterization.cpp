@@ -1150,6 +1150,86 @@ TEST(SupernodalLdlt, SplitPatternGivesTheSameFactorOnOneOrTwoThreads)
   }
 }
 
+// The mesh's fill-reducing order computed once and shared by the copies of its system (elimination_rank()), and given
+// to the least-distortion steps' factorization (Supernodal_ldlt::set_block_order) in place of METIS' own: the same
+// solutions as with METIS' order of the blocks, to the accuracy of either; an order of the wrong size is ignored.
+TEST(SupernodalLdlt, TheMeshOrderGivenSolvesAsMetisOrder)
+{
+  const SPI::Mesh_arrays arrays = arrays_of(read_mesh(cgal_data + "/bunny00.off")); // 37,706 vertices
+  const SPI::Sphere_system system = system_of(arrays);
+  const std::vector<int> rank = SPI::elimination_rank(system);
+  ASSERT_EQ(rank.size(), system.number_of_vertices);
+  std::vector<int> sorted = rank;
+  std::sort(sorted.begin(), sorted.end());
+  for(std::size_t i = 0; i < sorted.size(); ++i)
+    ASSERT_EQ(sorted[i], static_cast<int>(i)); // a permutation
+  const SPI::Sphere_system copy = system; // shares the cache: no second ordering, the same order
+  EXPECT_EQ(copy.vertex_order.get(), system.vertex_order.get());
+  EXPECT_TRUE(SPI::elimination_rank(copy) == rank);
+  const int n = 2 * static_cast<int>(system.number_of_vertices);
+  Eigen::VectorXd b(n);
+  for(int i = 0; i < n; ++i)
+    b[i] = std::cos(0.7 * i) + (i % 7 == 0 ? 1. : 0.);
+  for(const double shift : {0., 1.5})
+  {
+    const Eigen::SparseMatrix<double> lower = vertex_block_matrix(system, shift);
+    const Eigen::SparseMatrix<double> full = lower.selfadjointView<Eigen::Lower>();
+    SPI::Supernodal_ldlt by_metis(true, Eigen::Lower, 2), given(true, Eigen::Lower, 2), wrong_size(true, Eigen::Lower, 2);
+    given.set_block_order(rank);
+    wrong_size.set_block_order(std::vector<int>(rank.begin(), rank.end() - 1));
+    ASSERT_TRUE(by_metis.factorize(lower));
+    ASSERT_TRUE(given.factorize(lower));
+    ASSERT_TRUE(wrong_size.factorize(lower));
+    Eigen::VectorXd x = b, y = b, z = b;
+    by_metis.solve_in_place(x);
+    given.solve_in_place(y);
+    wrong_size.solve_in_place(z);
+    EXPECT_TRUE(z == x) << "shift " << shift; // ignored: METIS' order
+    EXPECT_LT((full * y - b).norm(), std::max(1e-12 * b.norm(), 10. * (full * x - b).norm())) << "shift " << shift;
+    EXPECT_LT((y - x).norm(), 1e-8 * x.norm()) << "shift " << shift;
+    EXPECT_EQ((given.pivots().array() < 0.).count(), (by_metis.pivots().array() < 0.).count()) << "shift " << shift;
+  }
+}
+
+// The least-distortion Hessian's pattern, made from the vertices' higher neighbours: the very matrix Eigen's
+// setFromTriplets() makes from the faces' 21 entries each, and each face entry's place the one of its (row, column).
+TEST(LeastDistortion, HessianPatternIsTheFacesEntries)
+{
+  for(const std::string name : {"bunny00.off", "octahedron.off", "man.off"})
+  {
+    const SPI::Mesh_arrays arrays = arrays_of(read_mesh(cgal_data + "/" + name));
+    const std::size_t n = arrays.points.size();
+    SPI::Distortion_hessian_pattern pattern;
+    pattern.make(arrays.triangles, n);
+    std::vector<Eigen::Triplet<double>> entries;
+    for(const std::array<int, 3>& face : arrays.triangles)
+      SPI::Distortion_hessian_pattern::for_each_face_entry(
+          face, [&](int row, int col, int, int) { entries.emplace_back(row, col, 1.); });
+    Eigen::SparseMatrix<double> expected(static_cast<Eigen::Index>(2 * n), static_cast<Eigen::Index>(2 * n));
+    expected.setFromTriplets(entries.begin(), entries.end());
+    expected.makeCompressed();
+    const Eigen::SparseMatrix<double>& made = pattern.hessian;
+    ASSERT_TRUE(made.isCompressed()) << name;
+    ASSERT_EQ(made.rows(), expected.rows()) << name;
+    ASSERT_EQ(made.nonZeros(), expected.nonZeros()) << name;
+    EXPECT_TRUE(std::equal(expected.outerIndexPtr(), expected.outerIndexPtr() + expected.outerSize() + 1,
+                           made.outerIndexPtr()))
+        << name;
+    EXPECT_TRUE(std::equal(expected.innerIndexPtr(), expected.innerIndexPtr() + expected.nonZeros(),
+                           made.innerIndexPtr()))
+        << name;
+    ASSERT_EQ(pattern.face_entries.size(), SPI::Distortion_hessian_pattern::entries_per_face * arrays.triangles.size());
+    std::size_t k = 0, misplaced = 0;
+    for(const std::array<int, 3>& face : arrays.triangles)
+      SPI::Distortion_hessian_pattern::for_each_face_entry(face, [&](int row, int col, int, int) {
+        const int where = pattern.face_entries[k++];
+        if(made.innerIndexPtr()[where] != row || where < made.outerIndexPtr()[col] || where >= made.outerIndexPtr()[col + 1])
+          ++misplaced;
+      });
+    EXPECT_EQ(misplaced, 0u) << name;
+  }
+}
+
 // The package's own small symmetric eigen-decomposition and solve (internal/small_symmetric_matrix.h) against Eigen's
 // dynamic-size solvers, at the three sizes the package uses: separated, repeated, graded, semi-definite, indefinite.
 template <int N>

@@ -26,6 +26,8 @@
 #include <cstddef>
 #include <cstdint>
 #include <functional>
+#include <memory>
+#include <mutex>
 #include <sstream>
 #include <string>
 #include <utility>
@@ -34,6 +36,14 @@
 namespace CGAL {
 namespace Spherical_parameterization {
 namespace internal {
+
+// A fill-reducing order of a mesh's vertices (stage3/tangent_newton_system.h's elimination_rank()), computed once and
+// shared by the copies of its system, which change the weights, never the connectivity.
+struct Vertex_order_cache
+{
+  std::mutex mutex;
+  std::vector<int> rank; // rank[i]: the position of vertex i; empty until computed
+};
 
 struct Sphere_system
 {
@@ -50,6 +60,7 @@ struct Sphere_system
   // Vertices of arm tips solved with regularized weights because their balanced positions lie below double precision
   // (stage3/tip_regularization.h): counted, not tested. Empty when there are none.
   std::vector<char> regularized_tips;
+  std::shared_ptr<Vertex_order_cache> vertex_order = std::make_shared<Vertex_order_cache>();
 
   std::size_t degree(std::size_t i) const { return offsets[i + 1] - offsets[i]; }
 };

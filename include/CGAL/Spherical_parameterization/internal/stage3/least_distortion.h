@@ -852,28 +852,70 @@ struct Distortion_hessian_pattern
           }
   }
 
-  // The pattern of `triangles` on `n` vertices.
+  // The pattern of `triangles` on `n` vertices, built from each vertex's higher neighbours (column 2v holds rows 2v and
+  // 2v + 1, column 2v + 1 row 2v + 1, and both the two rows of every higher neighbour, in order): the entries that
+  // Eigen's setFromTriplets() makes from the faces' 21 entries each, which took as long on CGAL's bunny00 (0.06 s) as
+  // the first assembly of the Hessian.
   void make(const std::vector<std::array<int, 3>>& triangles, std::size_t n)
   {
     const std::size_t m = triangles.size();
+    Compressed_lists<int> higher(static_cast<int>(n)); // each edge (u, v), u < v, as v in u's list (twice or more)
+    for(int pass = 0; pass < 2; ++pass)
     {
-      std::vector<Eigen::Triplet<double>> entries;
-      entries.reserve(entries_per_face * m);
-      for(std::size_t f = 0; f < m; ++f)
-        for_each_face_entry(triangles[f], [&](int row, int col, int, int) { entries.emplace_back(row, col, 0.); });
-      hessian = Eigen::SparseMatrix<double>(static_cast<Eigen::Index>(2 * n), static_cast<Eigen::Index>(2 * n));
-      hessian.setFromTriplets(entries.begin(), entries.end());
-      hessian.makeCompressed();
+      for(const std::array<int, 3>& t : triangles)
+        for(int k = 0; k < 3; ++k)
+        {
+          const int u = t[k], v = t[(k + 1) % 3];
+          higher.add(pass, std::min(u, v), std::max(u, v));
+        }
+      if(pass == 0)
+        higher.counted();
     }
+    std::vector<int> first(n + 1, 0); // vertex v's higher neighbours: neighbors[first[v]] to neighbors[first[v + 1] - 1]
+    std::vector<int> neighbors;
+    neighbors.reserve(higher.values.size() / 2);
+    for(std::size_t v = 0; v < n; ++v)
+    {
+      int* begin = higher.values.data() + higher.start[v];
+      int* end = higher.values.data() + higher.start[v + 1];
+      std::sort(begin, end);
+      neighbors.insert(neighbors.end(), begin, std::unique(begin, end));
+      first[v + 1] = static_cast<int>(neighbors.size());
+    }
+    const Eigen::Index size = static_cast<Eigen::Index>(2 * n);
+    std::vector<int> column_start(2 * n + 1, 0), rows;
+    rows.reserve(3 * n + 4 * neighbors.size());
+    for(std::size_t v = 0; v < n; ++v)
+      for(int s = 0; s < 2; ++s)
+      {
+        for(int r = s; r < 2; ++r)
+          rows.push_back(static_cast<int>(2 * v) + r);
+        for(int k = first[v]; k < first[v + 1]; ++k)
+        {
+          rows.push_back(2 * neighbors[static_cast<std::size_t>(k)]);
+          rows.push_back(2 * neighbors[static_cast<std::size_t>(k)] + 1);
+        }
+        column_start[2 * v + s + 1] = static_cast<int>(rows.size());
+      }
+    hessian = Eigen::SparseMatrix<double>(size, size);
+    hessian.resizeNonZeros(static_cast<Eigen::Index>(rows.size()));
+    std::copy(column_start.begin(), column_start.end(), hessian.outerIndexPtr());
+    std::copy(rows.begin(), rows.end(), hessian.innerIndexPtr());
+    std::fill(hessian.valuePtr(), hessian.valuePtr() + rows.size(), 0.);
     face_entries.resize(entries_per_face * m);
-    const int* starts = hessian.outerIndexPtr();
-    const int* rows = hessian.innerIndexPtr();
     for(std::size_t f = 0; f < m; ++f)
     {
       int k = 0;
       for_each_face_entry(triangles[f], [&](int row, int col, int, int) {
-        face_entries[entries_per_face * f + k++] =
-            static_cast<int>(std::lower_bound(rows + starts[col], rows + starts[col + 1], row) - rows);
+        const int v = col / 2, s = col % 2, u = row / 2, r = row % 2;
+        int offset = r - s; // u == v: the diagonal block's lower triangle
+        if(u != v)
+        {
+          const int* list = neighbors.data() + first[static_cast<std::size_t>(v)];
+          const int* last = neighbors.data() + first[static_cast<std::size_t>(v) + 1];
+          offset = (2 - s) + 2 * static_cast<int>(std::lower_bound(list, last, u) - list) + r;
+        }
+        face_entries[entries_per_face * f + k++] = column_start[static_cast<std::size_t>(col)] + offset;
       });
     }
   }
@@ -883,7 +925,9 @@ struct Distortion_hessian_pattern
 // lower in F than the one before, except the steps judged on F's rounding, see below_noise). Stops when every vertex
 // is stationary, at `options.max_newton_sweeps`, the time budget, a cancel, or when no step lowers F any more.
 // `first_pass_seconds`: what the first step is expected to take (the budget test of the later steps uses the last
-// one's duration), for instance scaled from a coarser level's; 0 when unknown.
+// one's duration), for instance scaled from a coarser level's; 0 when unknown. `vertex_rank`, when given (one entry
+// per vertex), is the fill-reducing order of the Hessian's blocks (tangent_newton_system.h's elimination_rank() of the
+// mesh, computed already or kept for the next minimization); otherwise METIS orders them.
 // Stationarity of vertex k: sigma_k = |grad_k F| h_k / a_k, h_k the mean chord length of its edges, a_k the
 // weight of its faces: the change of F, relative to its faces' share, per move of its own edge length. Its rounding
 // floor (positions rounded to double, |dx| ~ eps = 2^-52) is about eps r_k h_k / a_k, r_k the larger absolute row sum
@@ -895,7 +939,8 @@ inline Least_distortion_report minimize_conformal_distortion(const std::vector<s
                                                              const std::vector<Vector3>& points, std::vector<Vector3>& x,
                                                              const Iteration_options& options,
                                                              const CGAL::Real_timer& clock,
-                                                             double first_pass_seconds = 0.)
+                                                             double first_pass_seconds = 0.,
+                                                             const std::vector<int>* vertex_rank = nullptr)
 {
   using namespace least_distortion_detail;
   Least_distortion_report report;
@@ -994,6 +1039,8 @@ inline Least_distortion_report minimize_conformal_distortion(const std::vector<s
   constexpr std::size_t faces_per_batch = 16384;
   std::vector<Face_pass> batch(std::min(m, faces_per_batch));
   Supernodal_ldlt& factorization = pattern.factorization;
+  if(vertex_rank != nullptr && vertex_rank->size() == x.size())
+    factorization.set_block_order(*vertex_rank);
   factorization.set_parallel(parallel);
   // Asked between the factorization's supernodes (a step of a brain cortex factorizes for a second or more).
   bool factorization_cancelled = false;

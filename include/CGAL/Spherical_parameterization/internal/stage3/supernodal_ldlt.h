@@ -104,6 +104,11 @@ public:
     : m_order_by_metis(order_by_metis), m_lower(stored == Eigen::Lower), m_block_size(std::max(1, block_size))
   {}
 
+  // The order of the blocks to use instead of METIS' (block_rank[b]: the position of block b; the caller's fill-reducing
+  // order of the same graph, tangent_newton_system.h's elimination_rank()), from the next analysis on. Ignored unless
+  // it has one entry per block.
+  void set_block_order(std::vector<int> block_rank) { m_block_rank = std::move(block_rank); }
+
   // Whether the two groups of a split pattern are factorized by two threads (the factor is the same either way).
   void set_parallel(bool parallel) { m_parallel = parallel; }
 
@@ -268,8 +273,16 @@ private:
     {
       std::vector<idx_t> perm(n), iperm(n);
       idx_t vertices = n;
-      bool ordered = false; // by METIS; otherwise (no off-diagonal entry, or METIS failed) as given
-      if(m_order_by_metis && !adjncy.empty())
+      bool ordered = false; // by METIS or the order given; otherwise (no off-diagonal entry, or METIS failed) as given
+      const int given_block = m_block_size;
+      if(!m_block_rank.empty() && static_cast<std::size_t>(n) == m_block_rank.size() * static_cast<std::size_t>(m_block_size))
+      {
+        for(int block = 0; block < n / given_block; ++block)
+          for(int q = 0; q < given_block; ++q)
+            perm[m_block_rank[block] * given_block + q] = block * given_block + q;
+        ordered = true;
+      }
+      else if(m_order_by_metis && !adjncy.empty())
       {
         const int b = n % m_block_size == 0 ? m_block_size : 1;
         std::vector<idx_t> block_xadj, block_adjncy;
@@ -680,6 +693,7 @@ private:
   std::vector<std::size_t> m_row_start;      // each supernode's rows in m_rows
   std::vector<int> m_rows;                   // its columns first, then the rows below, increasing
   std::vector<std::size_t> m_panel_start;    // each supernode's dense panel (column-major, all its rows)
+  std::vector<int> m_block_rank; // set_block_order()
   std::vector<double> m_values;
   std::vector<std::size_t> m_scatter;        // where each stored entry of the matrix goes in m_values
   Eigen::VectorXd m_pivots;
