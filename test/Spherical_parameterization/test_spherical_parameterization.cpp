@@ -1163,9 +1163,12 @@ TEST(SupernodalLdlt, TheMeshOrderGivenSolvesAsMetisOrder)
   std::sort(sorted.begin(), sorted.end());
   for(std::size_t i = 0; i < sorted.size(); ++i)
     ASSERT_EQ(sorted[i], static_cast<int>(i)); // a permutation
+  ASSERT_TRUE(system.vertex_order);
+  EXPECT_TRUE(system.vertex_order->rank == rank); // kept with the system
   const SPI::Sphere_system copy = system; // shares the cache: no second ordering, the same order
   EXPECT_EQ(copy.vertex_order.get(), system.vertex_order.get());
   EXPECT_TRUE(SPI::elimination_rank(copy) == rank);
+  EXPECT_TRUE(system_of(arrays).vertex_order->rank.empty()); // a new system of the mesh starts without one
   const int n = 2 * static_cast<int>(system.number_of_vertices);
   Eigen::VectorXd b(n);
   for(int i = 0; i < n; ++i)
@@ -1174,17 +1177,36 @@ TEST(SupernodalLdlt, TheMeshOrderGivenSolvesAsMetisOrder)
   {
     const Eigen::SparseMatrix<double> lower = vertex_block_matrix(system, shift);
     const Eigen::SparseMatrix<double> full = lower.selfadjointView<Eigen::Lower>();
-    SPI::Supernodal_ldlt by_metis(true, Eigen::Lower, 2), given(true, Eigen::Lower, 2), wrong_size(true, Eigen::Lower, 2);
+    SPI::Supernodal_ldlt by_metis(true, Eigen::Lower, 2), given(true, Eigen::Lower, 2), wrong_size(true, Eigen::Lower, 2),
+        not_a_permutation(true, Eigen::Lower, 2);
     given.set_block_order(rank);
     wrong_size.set_block_order(std::vector<int>(rank.begin(), rank.end() - 1));
+    std::vector<int> repeated = rank;
+    repeated[1] = repeated[0];
+    not_a_permutation.set_block_order(repeated);
     ASSERT_TRUE(by_metis.factorize(lower));
     ASSERT_TRUE(given.factorize(lower));
     ASSERT_TRUE(wrong_size.factorize(lower));
-    Eigen::VectorXd x = b, y = b, z = b;
+    ASSERT_TRUE(not_a_permutation.factorize(lower));
+    Eigen::VectorXd x = b, y = b, z = b, w = b;
     by_metis.solve_in_place(x);
     given.solve_in_place(y);
     wrong_size.solve_in_place(z);
+    not_a_permutation.solve_in_place(w);
     EXPECT_TRUE(z == x) << "shift " << shift; // ignored: METIS' order
+    EXPECT_TRUE(w == x) << "shift " << shift;
+    // The order given is the one used: vertex v's two unknowns at positions 2 rank[v] and 2 rank[v] + 1, as the matrix
+    // permuted so and factorized in its own order (the same pivots, to the last bit).
+    Eigen::PermutationMatrix<Eigen::Dynamic, Eigen::Dynamic, int> to_position(n);
+    for(int v = 0; v < n / 2; ++v)
+      for(int q = 0; q < 2; ++q)
+        to_position.indices()[2 * v + q] = 2 * rank[static_cast<std::size_t>(v)] + q;
+    Eigen::SparseMatrix<double> permuted_full;
+    permuted_full = full.twistedBy(to_position);
+    const Eigen::SparseMatrix<double> permuted = permuted_full.triangularView<Eigen::Lower>();
+    SPI::Supernodal_ldlt in_its_order(false, Eigen::Lower, 2);
+    ASSERT_TRUE(in_its_order.factorize(permuted));
+    EXPECT_TRUE(in_its_order.pivots() == given.pivots()) << "shift " << shift;
     EXPECT_LT((full * y - b).norm(), std::max(1e-12 * b.norm(), 10. * (full * x - b).norm())) << "shift " << shift;
     EXPECT_LT((y - x).norm(), 1e-8 * x.norm()) << "shift " << shift;
     EXPECT_EQ((given.pivots().array() < 0.).count(), (by_metis.pivots().array() < 0.).count()) << "shift " << shift;

@@ -851,6 +851,8 @@ private:
                    std::vector<Vector3>& y)
   {
     Sphere_system uniform = make_connectivity(triangles, mesh.points.size());
+    if(&triangles == &m_system.triangles)
+      uniform.vertex_order = m_system.vertex_order; // the same mesh: its order (elimination_rank())
     std::string message;
     if(assign_weights(uniform, mesh, Weighting::UNIFORM, {}, message) != Error_code::OK)
       return false;
@@ -931,12 +933,17 @@ private:
     clock.start();
     options.max_newton_sweeps = std::min(options.max_newton_sweeps, options.tuning.least_distortion_max_steps);
     // The mesh's fill-reducing order, the one its Newton systems share (elimination_rank(): computed already where a
-    // level's Newton steps were factorized): METIS' on large meshes, as the minimization's own would be; small ones
-    // keep the minimization's own (METIS too, where elimination_rank() takes minimum degree).
-    const std::vector<int> vertex_rank = m_system.number_of_vertices >= nested_dissection_min_vertices
-                                             ? elimination_rank(m_system)
-                                             : std::vector<int>();
-    const std::vector<int>* given_rank = vertex_rank.empty() ? nullptr : &vertex_rank;
+    // level's Newton steps were factorized), taken when a minimization on the mesh starts (not before: where none
+    // does, METIS' call would be lost time that cannot be interrupted): METIS' on large meshes, as the minimization's
+    // own would be; small ones keep the minimization's own (METIS too, where elimination_rank() takes minimum degree).
+    std::vector<int> vertex_rank;
+    auto given_rank = [&]() -> const std::vector<int>* {
+      if(m_system.number_of_vertices < nested_dissection_min_vertices)
+        return nullptr;
+      if(vertex_rank.empty())
+        vertex_rank = elimination_rank(m_system);
+      return &vertex_rank;
+    };
     // A balanced map whose triangles keep their shape is the start: close to the minimum but along the boosts,
     // which the minimization balances first (bunny00 with cotangent weights: 3 boosts and 5 Newton steps, 0.9 s). One
     // squeezed beyond Solver_tuning::least_distortion_start_max_energy starts as an unbalanced map does.
@@ -944,7 +951,7 @@ private:
     {
       std::vector<Vector3> y = x;
       const Least_distortion_report report =
-          minimize_conformal_distortion(m_system.triangles, m_mesh.points, y, options, clock, 0., given_rank);
+          minimize_conformal_distortion(m_system.triangles, m_mesh.points, y, options, clock, 0., given_rank());
       m_cancelled = m_cancelled || report.cancelled;
       if(m_options.verbose)
         std::cerr << "least distortion: from the balanced map, " << report.newton_steps << " Newton steps, "
@@ -996,7 +1003,7 @@ private:
       if(start_taken)
       {
         const Least_distortion_report report =
-            minimize_conformal_distortion(m_system.triangles, m_mesh.points, repaired, options, clock, 0., given_rank);
+            minimize_conformal_distortion(m_system.triangles, m_mesh.points, repaired, options, clock, 0., given_rank());
         m_cancelled = m_cancelled || report.cancelled;
         if(m_options.verbose)
           std::cerr << "least distortion: from the repaired balanced map, " << report.newton_steps
@@ -1058,7 +1065,7 @@ private:
     Least_distortion_report report; // the time budget counts from `clock`'s start, Tutte's map included
     if(!m_cancelled && !levels.out_of_time && !past_time_budget(options, clock))
       report = minimize_conformal_distortion(m_system.triangles, m_mesh.points, y, options, clock, first_step_seconds,
-                                             given_rank);
+                                             given_rank());
     m_cancelled = m_cancelled || report.cancelled;
     if(m_options.verbose)
       std::cerr << "least distortion: " << (report.started ? "" : "not started, ") << report.newton_steps

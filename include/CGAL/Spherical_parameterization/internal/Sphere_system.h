@@ -42,7 +42,8 @@ namespace internal {
 struct Vertex_order_cache
 {
   std::mutex mutex;
-  std::vector<int> rank; // rank[i]: the position of vertex i; empty until computed
+  std::vector<int> rank;  // rank[i]: the position of vertex i; empty until computed
+  std::size_t edges = 0; // the size of the neighbour lists ordered (a check that the connectivity is the same)
 };
 
 struct Sphere_system

@@ -34,6 +34,7 @@
 #include <CGAL/Spherical_parameterization/internal/stage3/supernodal_ldlt.h>
 
 #include <CGAL/Real_timer.h>
+#include <CGAL/assertions.h>
 
 #include <Eigen/Dense>
 #include <Eigen/Sparse>
@@ -828,7 +829,8 @@ inline int smooth_conformal_distortion(const std::vector<std::array<int, 3>>& tr
 
 // The Hessian's lower triangle has the same pattern at every step of a minimization: it is made once, with where each
 // face's 21 entries go in it (face_entries: each step adds the faces' entries there, face after face), and so is its
-// factorization's analysis (METIS' ordering and the symbolic factorization, made by the first factorization).
+// factorization's analysis (the ordering, METIS' or the mesh's given one, and the symbolic factorization, made by the
+// first factorization).
 struct Distortion_hessian_pattern
 {
   static constexpr int entries_per_face = 21; // 3 diagonal 2x2 blocks' lower triangles, 3 blocks below the diagonal
@@ -866,6 +868,7 @@ struct Distortion_hessian_pattern
         for(int k = 0; k < 3; ++k)
         {
           const int u = t[k], v = t[(k + 1) % 3];
+          CGAL_precondition(u != v); // the input checks reject such faces
           higher.add(pass, std::min(u, v), std::max(u, v));
         }
       if(pass == 0)

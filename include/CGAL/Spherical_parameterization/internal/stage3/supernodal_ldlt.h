@@ -11,7 +11,8 @@
 // steps (least_distortion.h) factorize a Hessian of two unknowns per vertex at every step; on CGAL's bunny00 the
 // simplicial factorization was a third of their time, and on 100k vertices and more nearly all of it.
 //
-// The unknowns are ordered by METIS (nested dissection) on the first call, unless the caller ordered them; later calls
+// The unknowns are ordered by METIS (nested dissection) on the first call, unless the caller ordered them or gave the
+// blocks' order (set_block_order: the mesh's own, computed once for all its systems); later calls
 // with the same pattern reuse the ordering, the elimination tree, the supernodes and where each entry of the matrix
 // goes. Unknowns that come in blocks (a vertex's two tangent coordinates) are ordered by the blocks' graph, each
 // block's unknowns kept together: METIS then orders half the nodes and a quarter of the edges.
@@ -104,10 +105,23 @@ public:
     : m_order_by_metis(order_by_metis), m_lower(stored == Eigen::Lower), m_block_size(std::max(1, block_size))
   {}
 
-  // The order of the blocks to use instead of METIS' (block_rank[b]: the position of block b; the caller's fill-reducing
-  // order of the same graph, tangent_newton_system.h's elimination_rank()), from the next analysis on. Ignored unless
-  // it has one entry per block.
-  void set_block_order(std::vector<int> block_rank) { m_block_rank = std::move(block_rank); }
+  // The order of the blocks to use instead of METIS' or the unknowns' own (block_rank[b]: the position of block b; the
+  // caller's fill-reducing order of the same graph, tangent_newton_system.h's elimination_rank()), from the next
+  // analysis on. Ignored unless it is a permutation of the blocks (one entry per block, each position once).
+  void set_block_order(std::vector<int> block_rank)
+  {
+    std::vector<char> taken(block_rank.size(), 0);
+    for(int position : block_rank)
+    {
+      if(position < 0 || static_cast<std::size_t>(position) >= block_rank.size() || taken[position])
+      {
+        m_block_rank.clear();
+        return;
+      }
+      taken[position] = 1;
+    }
+    m_block_rank = std::move(block_rank);
+  }
 
   // Whether the two groups of a split pattern are factorized by two threads (the factor is the same either way).
   void set_parallel(bool parallel) { m_parallel = parallel; }

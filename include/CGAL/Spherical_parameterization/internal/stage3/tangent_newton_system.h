@@ -94,17 +94,22 @@ inline std::vector<int> vertex_elimination_rank(const Sphere_system& system)
 }
 
 // vertex_elimination_rank(system), computed on the first call for the mesh and kept with its system: each call of
-// mobius_newton builds a Newton system of its own (up to five on one level of oded_hammer, cotangent weights), and the
+// mobius_newton builds a Newton system of its own (three on oded_hammer's finest level, cotangent weights), and the
 // least-distortion minimization factorizes Hessians of the same graph (two unknowns per vertex). Each METIS ordering
-// took 0.15 s on CGAL's bunny00, 0.7 s on a brain cortex of 163,842 vertices.
+// took 0.15 s on CGAL's bunny00, 0.7 s on a brain cortex of 163,842 vertices. The cache also records the size of the
+// graph it ordered: a system whose connectivity differs (none does: copies change weights only) is ordered anew, as a
+// stale order would still factorize correctly but with far more fill.
 inline std::vector<int> elimination_rank(const Sphere_system& system)
 {
   if(!system.vertex_order)
     return vertex_elimination_rank(system);
   Vertex_order_cache& cache = *system.vertex_order;
   std::lock_guard<std::mutex> lock(cache.mutex);
-  if(cache.rank.size() != system.number_of_vertices)
+  if(cache.rank.size() != system.number_of_vertices || cache.edges != system.neighbors.size())
+  {
     cache.rank = vertex_elimination_rank(system);
+    cache.edges = system.neighbors.size();
+  }
   return cache.rank;
 }
 
