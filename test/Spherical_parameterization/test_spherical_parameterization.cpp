@@ -1418,6 +1418,67 @@ TEST(TangentKrylovSystem, FullStepsConvergeWithFewMinresIterations)
   EXPECT_LT(imbalance[m - 2], 1e-2 * imbalance[m - 3]);
 }
 
+// Tutte's balanced map of the whole mesh (the default call), as unit vectors; empty if it fails.
+std::vector<SPI::Vector3> tutte_map_of(const Mesh& mesh)
+{
+  Mesh copy = mesh;
+  auto tutte = copy.add_property_map<Mesh::Vertex_index, Point>("v:tutte", Point()).first;
+  std::vector<SPI::Vector3> x;
+  if(SP::spherical_parameterize(copy, tutte).status != SP::Error_code::OK)
+    return x;
+  for(Mesh::Vertex_index v : vertices(copy))
+    x.emplace_back(tutte[v].x(), tutte[v].y(), tutte[v].z());
+  return x;
+}
+
+// Cotangent weights' Laplacian with their signs is the sum of the faces' cotangent forms, positive semi-definite: the
+// MINRES preconditioner takes it (its diagonal the signed row sums) where the system says so, and copies whose weights
+// change otherwise say not. From Tutte's map of a cortex with negative cotangent weights (what a multilevel level is
+// carried back close to), MINRES reaches the forcing in fewer iterations with it than with |w_ij| on the diagonal.
+TEST(TangentKrylovSystem, CotangentWeightsArePreconditionedByTheirOwnLaplacian)
+{
+  const Mesh mesh = read_mesh(shared_meshes + "/nilearn_fsavg5_pial_left.off");
+  const std::vector<SPI::Vector3> x = tutte_map_of(mesh);
+  ASSERT_EQ(x.size(), num_vertices(mesh));
+  const SPI::Mesh_arrays arrays = arrays_of(mesh);
+  const SPI::Sphere_system system = system_of(arrays, SP::Weighting::COTANGENT);
+  ASSERT_FALSE(SPI::has_positive_weights(system));
+  ASSERT_EQ(system.clamped_weights, 0u);
+  EXPECT_TRUE(system.signed_laplacian_semidefinite);
+  EXPECT_FALSE(system_of(arrays, SP::Weighting::UNIFORM).signed_laplacian_semidefinite);
+  EXPECT_FALSE(system_of(arrays, SP::Weighting::MEAN_VALUE).signed_laplacian_semidefinite);
+
+  SPI::Sphere_system blend = system;
+  SPI::blend_with_tutte(system, 0.5, blend);
+  EXPECT_TRUE(blend.signed_laplacian_semidefinite) << "one blend parameter: a sum of two semi-definite Laplacians";
+  std::vector<double> holds(system.number_of_vertices, 1.);
+  holds[0] = 0.25;
+  SPI::blend_with_tutte(system, 0.5, blend, &holds);
+  EXPECT_FALSE(blend.signed_laplacian_semidefinite) << "edges blended at other parameters";
+  std::vector<char> tip(system.number_of_vertices, 0);
+  tip[0] = 1;
+  for(std::size_t k = system.offsets[0]; k < system.offsets[1]; ++k)
+    tip[static_cast<std::size_t>(system.neighbors[k])] = 1;
+  EXPECT_FALSE(SPI::regularize_tips(system, tip, SPI::Solver_tuning().tip_weight_ratio_per_ring)
+                   .signed_laplacian_semidefinite);
+
+  SPI::Sphere_system absolute = system;
+  absolute.signed_laplacian_semidefinite = false;
+  int iterations[2] = {0, 0};
+  for(int signs = 0; signs < 2; ++signs)
+  {
+    SPI::Tangent_krylov_system krylov(signs == 1 ? system : absolute);
+    ASSERT_TRUE(krylov.assemble(x));
+    std::vector<SPI::Vector3> step;
+    ASSERT_TRUE(krylov.solve(step, 1e-6, 1000));
+    EXPECT_LE(krylov.last_relative_residual(), 1e-6) << "MINRES did not converge: is the preconditioner definite?";
+    iterations[signs] = krylov.last_iterations();
+  }
+  std::cout << "MINRES iterations to 1e-6 from Tutte's map, cotangent weights: " << iterations[1]
+            << " with their own Laplacian, " << iterations[0] << " with |w_ij| on its diagonal\n";
+  EXPECT_LT(iterations[1], iterations[0]);
+}
+
 // Tutte's balanced map of a coarse level, from its two disks (no multilevel start of its own).
 SP::Result two_disk_tutte_map(const SPI::Mesh_arrays& coarse, std::vector<SPI::Vector3>& x)
 {
@@ -1847,16 +1908,13 @@ TEST(MultilevelStart, MeanValueWeightsFallBackToTheLevels)
 // carried back is close to), with the default cap and with a cap of one iteration, which the first solve reaches.
 TEST(MultilevelStart, NegativeWeightsFactorizeWhereMinresReachesItsCap)
 {
-  Mesh mesh = read_mesh(shared_meshes + "/nilearn_fsavg5_pial_left.off");
-  auto tutte = mesh.add_property_map<Mesh::Vertex_index, Point>("v:tutte", Point()).first;
-  ASSERT_EQ(SP::spherical_parameterize(mesh, tutte).status, SP::Error_code::OK);
+  const Mesh mesh = read_mesh(shared_meshes + "/nilearn_fsavg5_pial_left.off");
+  const std::vector<SPI::Vector3> start = tutte_map_of(mesh);
+  ASSERT_EQ(start.size(), num_vertices(mesh));
   const SPI::Mesh_arrays arrays = arrays_of(mesh);
   const SPI::Sphere_system system = system_of(arrays, SP::Weighting::COTANGENT);
   ASSERT_FALSE(SPI::has_positive_weights(system));
   ASSERT_GE(system.number_of_vertices, SPI::Solver_tuning().iterative_newton_min_vertices);
-  std::vector<SPI::Vector3> start;
-  for(Mesh::Vertex_index v : vertices(mesh))
-    start.emplace_back(tutte[v].x(), tutte[v].y(), tutte[v].z());
   for(int cap : {SPI::Solver_tuning().newton_max_minres_iterations, 1})
   {
     SCOPED_TRACE(cap);

@@ -56,6 +56,11 @@ struct Sphere_system
   std::vector<double> row_sums;     // raw weight of (i, j) = weights[k] * row_sums[i]
   bool symmetric = true;            // raw weights satisfy w_ij = w_ji
   std::size_t clamped_weights = 0;  // weights with a degenerate corner or edge, bounded (see out_of_bounds)
+  // The Laplacian of the raw weights with their signs (off-diagonals -w_ij, diagonal sum_j w_ij) is known to be
+  // positive semi-definite: cotangent weights, none clamped (it is then the sum of the faces' cotangent forms, each the
+  // Dirichlet energy of the linear functions on its triangle, obtuse or not), and their blends with Tutte's
+  // (stage3/weight_continuation.h). Set by assign_weights(); copies that change weights otherwise clear it.
+  bool signed_laplacian_semidefinite = false;
   std::vector<int> ring_faces;      // for the entry (i, j = ring[k]): the face (i, ring[k], ring[k+1])
   std::vector<std::array<int, 3>> triangles;
   // Vertices of arm tips solved with regularized weights because their balanced positions lie below double precision
@@ -227,6 +232,7 @@ inline Error_code assign_weights(Sphere_system& system, const Mesh_arrays& mesh,
   system.weights.assign(system.neighbors.size(), 1.);
   system.row_sums.assign(n, 1.);
   system.clamped_weights = 0;
+  system.signed_laplacian_semidefinite = false;
   // Edge lengths below 1e-12 of the bounding box diagonal (coincident vertices) count as that length.
   Vector3 low = n > 0 ? mesh.points[0] : Vector3(), high = low;
   for(const Vector3& q : mesh.points)
@@ -272,6 +278,7 @@ inline Error_code assign_weights(Sphere_system& system, const Mesh_arrays& mesh,
       system.weights[k] /= sum;
     system.row_sums[i] = sum;
   }
+  system.signed_laplacian_semidefinite = weighting == Weighting::COTANGENT && system.clamped_weights == 0;
   system.symmetric = true;
   for(std::size_t i = 0; i < n && system.symmetric; ++i)
     for(std::size_t k = system.offsets[i]; k < system.offsets[i + 1]; ++k)

@@ -166,13 +166,13 @@ inline Iteration_report mobius_newton(Sphere_state& state, const Iteration_optio
   // MINRES and 1.6 s for its retry to the smallest forcing). MINRES gives the rotation-consistent step, not the plain
   // gauge's, so where steps are accepted the path differs (CGAL's fandisk_large with cotangent weights now converges
   // on its finest level: the manual's Newton-Krylov item).
-  // The preconditioner is the weights' graph Laplacian, a good model of the Jacobian when every weight is positive
-  // (Tutte's, mean value made admissible, cotangent on Delaunay meshes). With negative cotangent weights MINRES
-  // needed hundreds of iterations per step from the two-disk guess (c3d_igea: 2,973 in 22 steps, 197 s against 48 s
-  // factorized), but few from a map carried back from a coarser level (Boost_aim::ROOT), which is close to the
-  // solution on most meshes (bunny00: 44 in 5 steps, 0.46 s, where a factorized step alone takes 0.3 s). There, where
-  // MINRES does not reach its forcing within its cap, or its step is rejected at the smallest forcing, the rest of
-  // the phase factorizes (the exact steps).
+  // The preconditioner is the weights' graph Laplacian (tangent_multigrid.h; for cotangent weights, their own signed
+  // one since 2026-12-05: the figures here are from before, with absolute values on its diagonal). With negative
+  // cotangent weights MINRES needed hundreds of iterations per step from the two-disk guess (c3d_igea: 2,973 in 22
+  // steps, 197 s against 48 s factorized), but few from a map carried back from a coarser level (Boost_aim::ROOT),
+  // which is close to the solution on most meshes (bunny00: 44 in 5 steps, 0.46 s, where a factorized step alone
+  // takes 0.3 s). There, where MINRES does not reach its forcing within its cap, or its step is rejected at the
+  // smallest forcing, the rest of the phase factorizes (the exact steps).
   const bool positive_weights = has_positive_weights(system);
   bool iterative = (allow_folds || boost_aim == Boost_aim::ROOT) && n >= tuning.iterative_newton_min_vertices
                    && (positive_weights || boost_aim == Boost_aim::ROOT);

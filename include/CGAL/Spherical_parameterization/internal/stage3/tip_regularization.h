@@ -170,6 +170,7 @@ inline Sphere_system regularize_tips(const Sphere_system& system, const std::vec
       regularized.weights[k] /= sum;
   }
   regularized.regularized_tips.clear(); // the regularized system tests its tips under their own weights
+  regularized.signed_laplacian_semidefinite = false; // edges scaled one by one: no longer the faces' cotangent forms
   return regularized;
 }
 

@@ -55,6 +55,9 @@ struct Continuation_report
 inline void blend_with_tutte(const Sphere_system& target, double s, Sphere_system& blend,
                              const std::vector<double>* holds = nullptr)
 {
+  // (1 - s) times Tutte's Laplacian plus s times the target's: semi-definite where the target's is, unless holds
+  // blend some edges at other parameters.
+  bool one_parameter = true;
   for(std::size_t i = 0; i < target.number_of_vertices; ++i)
   {
     double sum = 0.;
@@ -63,6 +66,7 @@ inline void blend_with_tutte(const Sphere_system& target, double s, Sphere_syste
       double edge_s = s;
       if(holds != nullptr && !holds->empty())
         edge_s = std::min(edge_s, std::min((*holds)[i], (*holds)[static_cast<std::size_t>(target.neighbors[k])]));
+      one_parameter = one_parameter && edge_s == s;
       blend.weights[k] = (1. - edge_s) + edge_s * target.weights[k] * target.row_sums[i];
       sum += blend.weights[k];
     }
@@ -71,6 +75,7 @@ inline void blend_with_tutte(const Sphere_system& target, double s, Sphere_syste
     blend.row_sums[i] = sum;
   }
   blend.symmetric = true;
+  blend.signed_laplacian_semidefinite = target.signed_laplacian_semidefinite && one_parameter;
 }
 
 // The shape of a face on the sphere, scale-free: det(a, b, c) over the sum of its squared chords (0 when degenerate).
