@@ -1434,7 +1434,7 @@ std::vector<SPI::Vector3> tutte_map_of(const Mesh& mesh)
 // Cotangent weights' Laplacian with their signs is the sum of the faces' cotangent forms, positive semi-definite: the
 // MINRES preconditioner takes it (its diagonal the signed row sums) where the system says so, and copies whose weights
 // change otherwise say not. From Tutte's map of a cortex with negative cotangent weights (what a multilevel level is
-// carried back close to), MINRES reaches the forcing in fewer iterations with it than with |w_ij| on the diagonal.
+// carried back close to), MINRES reaches a plain residual in fewer iterations with it than with |w_ij| on the diagonal.
 TEST(TangentKrylovSystem, CotangentWeightsArePreconditionedByTheirOwnLaplacian)
 {
   const Mesh mesh = read_mesh(shared_meshes + "/nilearn_fsavg5_pial_left.off");
@@ -1464,18 +1464,28 @@ TEST(TangentKrylovSystem, CotangentWeightsArePreconditionedByTheirOwnLaplacian)
 
   SPI::Sphere_system absolute = system;
   absolute.signed_laplacian_semidefinite = false;
+  // Each to a plain relative residual of 1e-6 (MINRES tests its preconditioner's norm, which differs between the
+  // two: its forcing is tightened until the plain residual is reached).
   int iterations[2] = {0, 0};
   for(int signs = 0; signs < 2; ++signs)
   {
     SPI::Tangent_krylov_system krylov(signs == 1 ? system : absolute);
     ASSERT_TRUE(krylov.assemble(x));
     std::vector<SPI::Vector3> step;
-    ASSERT_TRUE(krylov.solve(step, 1e-6, 1000));
-    EXPECT_LE(krylov.last_relative_residual(), 1e-6) << "MINRES did not converge: is the preconditioner definite?";
+    double forcing = 1e-6;
+    for(;;)
+    {
+      ASSERT_TRUE(krylov.solve(step, forcing, 1000));
+      EXPECT_LE(krylov.last_relative_residual(), forcing) << "MINRES did not converge: is the preconditioner definite?";
+      if(krylov.plain_relative_residual() <= 1e-6 || forcing < 1e-12)
+        break;
+      forcing /= 10.;
+    }
+    EXPECT_LE(krylov.plain_relative_residual(), 1e-6);
     iterations[signs] = krylov.last_iterations();
   }
-  std::cout << "MINRES iterations to 1e-6 from Tutte's map, cotangent weights: " << iterations[1]
-            << " with their own Laplacian, " << iterations[0] << " with |w_ij| on its diagonal\n";
+  std::cout << "MINRES iterations to a plain relative residual of 1e-6 from Tutte's map, cotangent weights: "
+            << iterations[1] << " with their own Laplacian, " << iterations[0] << " with |w_ij| on its diagonal\n";
   EXPECT_LT(iterations[1], iterations[0]);
 }
 

@@ -58,8 +58,12 @@ struct Sphere_system
   std::size_t clamped_weights = 0;  // weights with a degenerate corner or edge, bounded (see out_of_bounds)
   // The Laplacian of the raw weights with their signs (off-diagonals -w_ij, diagonal sum_j w_ij) is known to be
   // positive semi-definite: cotangent weights, none clamped (it is then the sum of the faces' cotangent forms, each the
-  // Dirichlet energy of the linear functions on its triangle, obtuse or not), and their blends with Tutte's
-  // (stage3/weight_continuation.h). Set by assign_weights(); copies that change weights otherwise clear it.
+  // Dirichlet energy of the linear functions on its triangle, obtuse or not), their blends with Tutte's at one
+  // parameter (stage3/weight_continuation.h), and those made admissible (all positive). In exact arithmetic: near the
+  // clamping bound (corners of 1e-6) rounding can leave a face's form indefinite by about eps / angle^2, which the
+  // preconditioner's relative shift of its diagonal covers (an independent check: no negative pivot of L + 1e-8 diag(L)
+  // on 59 of CGAL's and the shared meshes). Only the MINRES preconditioner reads it (stage3/tangent_multigrid.h); set
+  // by assign_weights(), false for Tutte's and the user's weights; copies that change the weights otherwise clear it.
   bool signed_laplacian_semidefinite = false;
   std::vector<int> ring_faces;      // for the entry (i, j = ring[k]): the face (i, ring[k], ring[k+1])
   std::vector<std::array<int, 3>> triangles;

@@ -107,6 +107,22 @@ public:
   bool stopped() const { return m_stopped; }
   double last_relative_residual() const { return m_last_relative_residual; }
 
+  // |b - A s| / |b| of the last solve's step s in the plain norm of the tangent coordinates. MINRES's own test is in
+  // the preconditioner's norm, where the boost fields (the tangent parts of the constants, nearly a null space of the
+  // Laplacian of Tutte's weights and of cotangent weights' own) weigh far more than the rest: see tangent_multigrid.h.
+  double plain_relative_residual()
+  {
+    std::vector<double> applied(m_rhs.size());
+    multiply(m_solution.data(), applied.data());
+    double residual = 0., rhs = 0.;
+    for(std::size_t r = 0; r < m_rhs.size(); ++r)
+    {
+      residual += (m_rhs[r] - applied[r]) * (m_rhs[r] - applied[r]);
+      rhs += m_rhs[r] * m_rhs[r];
+    }
+    return rhs > 0. ? std::sqrt(residual / rhs) : 0.;
+  }
+
 private:
   // out = P (-J) P in, with P the projection orthogonal to the rotations.
   void multiply(const double* in, double* out)

@@ -46,14 +46,19 @@ public:
 
   bool is_built() const { return m_built; }
 
-  // The graph Laplacian of the raw weights, off-diagonals -w_ij, slightly raised, its diagonal sum_j w_ij where that
-  // Laplacian is known to be positive semi-definite (Sphere_system::signed_laplacian_semidefinite: cotangent weights),
-  // otherwise sum_j |w_ij| (positive definite whatever the signs; the same for positive weights). The signed one is
-  // the Laplacian in the Jacobian itself: with the absolute values, the vertices with negative weights got diagonals
-  // too large, and MINRES needed about twice the iterations from the maps carried back (bigbrain's finest level,
-  // cotangent weights: 101 for its first step, 3.6 s, where a factorized step takes 1.15 s; 51 for all its steps
-  // now). With `symmetrize`, w_ij is replaced by (w_ij + w_ji) / 2: non-symmetric weights then get a symmetric
-  // V-cycle, as good for J^T as for J.
+  // The graph Laplacian of the raw weights, off-diagonals -w_ij, its diagonal sum_j w_ij where that Laplacian is
+  // known to be positive semi-definite (Sphere_system::signed_laplacian_semidefinite: cotangent weights), otherwise
+  // sum_j |w_ij| (semi-definite whatever the signs; the same matrix for positive weights); the diagonal raised by
+  // laplacian_shift makes it definite, as MINRES needs. The signed one is the Laplacian in the Jacobian itself: with
+  // the absolute values, the vertices with negative weights got diagonals too large, and MINRES needed far more
+  // iterations from the maps carried back (bigbrain's finest level, cotangent weights: 101 for its first step, 3.6 s,
+  // where a factorized step takes 1.15 s; 51 for all its steps now; from Tutte's map of nilearn_fsavg5_pial_left,
+  // 43 against 134 to a plain relative residual of 1e-6: unit test CotangentWeightsArePreconditionedByTheirOwnLaplacian). Its constants are then nearly a null space, as with
+  // Tutte's weights: in this preconditioner's norm, in which MINRES tests its forcing, the boost fields (their
+  // tangent parts) weigh far more than the rest, so the rest of a step is solved 10 to 45 times less tightly than the
+  // forcing says (measured on two cortices, as with Tutte's weights; the steps on the multilevel levels drop their
+  // boost part anyway). With `symmetrize`, w_ij is replaced by (w_ij + w_ji) / 2: non-symmetric weights then get a
+  // symmetric V-cycle, as good for J^T as for J.
   bool build(const Sphere_system& system, bool symmetrize)
   {
     const std::size_t n = system.number_of_vertices;
